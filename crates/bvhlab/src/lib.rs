@@ -1,0 +1,79 @@
+//! # bvhlab: bounding volumes and exact geometric queries in 2D and 3D
+//!
+//! The query core of bvh-lab, an interactive lab for the bounding-volume-hierarchy lecture
+//! (University of Toronto CSC418/2504, after Marschner and Shirley). It is a library first: it
+//! knows nothing of drawing, and every answer it gives is exact or says why it cannot be.
+//!
+//! - Primitives: [`Ray2`]/[`Ray3`], [`Segment2`], [`Triangle3`], points as glam vectors.
+//! - Bounding volumes, each fitted to a point set and each answering the queries of
+//!   [`prelude::BoundingVolume`] (ray interval, distance, containment, overlap, merge,
+//!   measures): [`Aabb2`]/[`Aabb3`], [`Sphere2`]/[`Sphere3`] (the lecture's centroid fit,
+//!   Ritter's and Welzl's), [`Obb2`]/[`Obb3`] (PCA, with the separating-axis test), and
+//!   [`ConvexHull2`]/[`ConvexHull3`].
+//!
+//! One implementation serves both dimensions: every type is generic over [`Vector`],
+//! implemented for [`glam::Vec2`] and [`glam::Vec3`], and the `2`/`3` names are aliases.
+//!
+//! ```
+//! use bvhlab::prelude::*;
+//! use bvhlab::glam::Vec2;
+//!
+//! let points = [Vec2::new(0.0, 0.0), Vec2::new(4.0, 0.0), Vec2::new(2.0, 1.0)];
+//! let sphere = Sphere2::welzl_fit(&points);
+//! let ray = Ray2::new(Vec2::new(-5.0, 0.0), Vec2::X)?;
+//! let (t_enter, t_exit) = sphere.ray_interval(&ray).expect("the ray passes the centre");
+//! assert!(t_enter < 5.0 && t_exit > 9.0);
+//! # Ok::<(), bvhlab::GeometryError>(())
+//! ```
+
+pub use glam;
+
+pub mod error;
+pub mod math;
+pub mod primitive;
+pub mod ray;
+pub mod vector;
+pub mod volume;
+
+pub use error::GeometryError;
+pub use primitive::{Primitive, Segment2, Triangle3};
+pub use ray::Ray;
+pub use vector::Vector;
+pub use volume::{
+    Aabb, AxisSource, AxisTest, BoundingVolume, ConvexHull, FitKind, FitReport, Obb,
+    SeparatingAxis, SlabTest, Sphere,
+};
+
+use glam::{Vec2, Vec3};
+
+/// A 2D ray.
+pub type Ray2 = Ray<Vec2>;
+/// A 3D ray.
+pub type Ray3 = Ray<Vec3>;
+/// A 2D axis-aligned box.
+pub type Aabb2 = Aabb<Vec2>;
+/// A 3D axis-aligned box.
+pub type Aabb3 = Aabb<Vec3>;
+/// A circle (a 2D sphere).
+pub type Sphere2 = Sphere<Vec2>;
+/// A 3D sphere.
+pub type Sphere3 = Sphere<Vec3>;
+/// A 2D oriented box.
+pub type Obb2 = Obb<Vec2>;
+/// A 3D oriented box.
+pub type Obb3 = Obb<Vec3>;
+/// A convex polygon.
+pub type ConvexHull2 = ConvexHull<Vec2>;
+/// A convex polyhedron.
+pub type ConvexHull3 = ConvexHull<Vec3>;
+
+/// The names most programs need: the query traits and the 2D/3D types.
+pub mod prelude {
+    pub use crate::primitive::Primitive;
+    pub use crate::vector::Vector;
+    pub use crate::volume::BoundingVolume;
+    pub use crate::{
+        Aabb2, Aabb3, ConvexHull2, ConvexHull3, GeometryError, Obb2, Obb3, Ray2, Ray3, Segment2,
+        Sphere2, Sphere3, Triangle3,
+    };
+}

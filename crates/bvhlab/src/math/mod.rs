@@ -1,0 +1,4 @@
+//! Small dense linear algebra in `f64`, sized at compile time, used by the fits.
+
+pub mod eigen;
+pub mod linear_solve;

@@ -1,0 +1,230 @@
+//! Triangles in 3D: the watertight ray-triangle test and the closest point on a triangle.
+
+use glam::{DVec3, Vec3};
+
+use super::Primitive;
+use crate::volume::Aabb;
+use crate::Ray3;
+
+/// A triangle with corners `a`, `b`, `c`; meshes are slices of these.
+///
+/// Seen from the side its [`normal`](Primitive::normal) points to, the corners run
+/// counter-clockwise. Ray tests hit both sides. A degenerate triangle (zero area) is never hit
+/// by a ray, but its closest point is still well defined (on one of its edges).
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+#[repr(C)]
+pub struct Triangle3 {
+    /// First corner.
+    pub a: Vec3,
+    /// Second corner.
+    pub b: Vec3,
+    /// Third corner.
+    pub c: Vec3,
+}
+
+/// The coordinates of a vertex relative to the ray origin, in the ray's sheared frame.
+#[derive(Clone, Copy)]
+struct Sheared {
+    x: f32,
+    y: f32,
+    z: f32,
+}
+
+impl Triangle3 {
+    /// The triangle with corners `a`, `b`, `c`.
+    pub const fn new(a: Vec3, b: Vec3, c: Vec3) -> Self {
+        Self { a, b, c }
+    }
+
+    /// The `t >= 0` at which the ray crosses the triangle, if it does.
+    ///
+    /// Watertight: Woop, Benthin and Wald, "Watertight Ray/Triangle Intersection", JCGT 2(1),
+    /// 2013. The ray is turned into the +z axis by a permutation and a shear; each edge test is
+    /// then a 2D cross product of two transformed corners. A corner's transformed coordinates
+    /// depend only on that corner and the ray, so triangles sharing an edge compute the same
+    /// edge value with opposite signs, and a ray through a shared edge or vertex of a closed
+    /// mesh hits at least one of the triangles there. Exact zeros are re-evaluated in `f64`
+    /// as the paper prescribes. Both sides are hit; a ray in the triangle's plane is not.
+    pub fn ray_hit(&self, ray: &Ray3) -> Option<f32> {
+        let d = ray.dir();
+        // kz: the dominant axis of the direction; kx, ky follow it cyclically, swapped when
+        // d[kz] < 0 to keep the winding (and so the sign convention) unchanged.
+        let kz = d.abs().max_position();
+        let mut kx = (kz + 1) % 3;
+        let mut ky = (kx + 1) % 3;
+        if d[kz] < 0.0 {
+            std::mem::swap(&mut kx, &mut ky);
+        }
+        let sx = d[kx] / d[kz];
+        let sy = d[ky] / d[kz];
+        let sz = 1.0 / d[kz];
+        let shear = |p: Vec3| {
+            let p = p - ray.origin();
+            Sheared {
+                x: p[kx] - sx * p[kz],
+                y: p[ky] - sy * p[kz],
+                z: sz * p[kz],
+            }
+        };
+        let (a, b, c) = (shear(self.a), shear(self.b), shear(self.c));
+
+        let mut u = c.x * b.y - c.y * b.x;
+        let mut v = a.x * c.y - a.y * c.x;
+        let mut w = b.x * a.y - b.y * a.x;
+        if u == 0.0 || v == 0.0 || w == 0.0 {
+            let edge = |p: Sheared, q: Sheared| {
+                (f64::from(p.x) * f64::from(q.y) - f64::from(p.y) * f64::from(q.x)) as f32
+            };
+            u = edge(c, b);
+            v = edge(a, c);
+            w = edge(b, a);
+        }
+        if (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0) {
+            return None;
+        }
+        let det = u + v + w;
+        if det == 0.0 {
+            return None;
+        }
+        let t_scaled = u * a.z + v * b.z + w * c.z;
+        // t = t_scaled / det must be >= 0: same sign, or zero.
+        if (det > 0.0 && t_scaled < 0.0) || (det < 0.0 && t_scaled > 0.0) {
+            return None;
+        }
+        let t = t_scaled / det;
+        t.is_finite().then_some(t)
+    }
+
+    /// The point of the triangle nearest to `p`.
+    ///
+    /// Voronoi-region method of Ericson, "Real-Time Collision Detection", §5.1.5: find which
+    /// vertex, edge or face region `p` projects into using barycentric tests. A degenerate
+    /// triangle falls back to the nearest of its three edges.
+    pub fn closest_point(&self, p: Vec3) -> Vec3 {
+        let (a, b, c) = (self.a, self.b, self.c);
+        let (ab, ac, ap) = (b - a, c - a, p - a);
+        let (d1, d2) = (ab.dot(ap), ac.dot(ap));
+        if d1 <= 0.0 && d2 <= 0.0 {
+            return a;
+        }
+        let bp = p - b;
+        let (d3, d4) = (ab.dot(bp), ac.dot(bp));
+        if d3 >= 0.0 && d4 <= d3 {
+            return b;
+        }
+        let vc = d1 * d4 - d3 * d2;
+        if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+            return a + ab * (d1 / (d1 - d3));
+        }
+        let cp = p - c;
+        let (d5, d6) = (ab.dot(cp), ac.dot(cp));
+        if d6 >= 0.0 && d5 <= d6 {
+            return c;
+        }
+        let vb = d5 * d2 - d1 * d6;
+        if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+            return a + ac * (d2 / (d2 - d6));
+        }
+        let va = d3 * d6 - d5 * d4;
+        if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
+            return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+        }
+        let sum = va + vb + vc;
+        if sum > 0.0 && sum.is_finite() {
+            // Inside the face region: barycentric coordinates (u, v, w) = (va, vb, vc) / sum.
+            return a + ab * (vb / sum) + ac * (vc / sum);
+        }
+        self.closest_point_on_edges(p)
+    }
+
+    fn closest_point_on_edges(&self, p: Vec3) -> Vec3 {
+        let on_edge = |s: Vec3, e: Vec3| {
+            let len2 = (e - s).length_squared();
+            let t = if len2 > 0.0 {
+                ((p - s).dot(e - s) / len2).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            s + (e - s) * t
+        };
+        [on_edge(self.a, self.b), on_edge(self.b, self.c), on_edge(self.c, self.a)]
+            .into_iter()
+            .min_by(|x, y| x.distance_squared(p).total_cmp(&y.distance_squared(p)))
+            .unwrap_or(self.a)
+    }
+
+    /// The area.
+    pub fn area(&self) -> f32 {
+        0.5 * (self.b - self.a).cross(self.c - self.a).length()
+    }
+
+    /// The unit normal, or `None` for a degenerate triangle. Computed in `f64` so that thin
+    /// triangles still get an accurate direction.
+    pub fn unit_normal(&self) -> Option<Vec3> {
+        let (a, b, c): (DVec3, DVec3, DVec3) =
+            (self.a.as_dvec3(), self.b.as_dvec3(), self.c.as_dvec3());
+        (b - a).cross(c - a).try_normalize().map(DVec3::as_vec3)
+    }
+}
+
+impl Primitive<Vec3> for Triangle3 {
+    fn bounds(&self) -> Aabb<Vec3> {
+        Aabb::new(self.a.min(self.b).min(self.c), self.a.max(self.b).max(self.c))
+    }
+    fn centroid(&self) -> Vec3 {
+        (self.a + self.b + self.c) / 3.0
+    }
+    fn ray_hit(&self, ray: &Ray3) -> Option<f32> {
+        Triangle3::ray_hit(self, ray)
+    }
+    fn closest_point(&self, point: Vec3) -> Vec3 {
+        Triangle3::closest_point(self, point)
+    }
+    fn measure(&self) -> f32 {
+        self.area()
+    }
+    fn normal(&self) -> Vec3 {
+        (self.b - self.a).cross(self.c - self.a)
+    }
+    fn vertices(&self) -> impl Iterator<Item = Vec3> {
+        [self.a, self.b, self.c].into_iter()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn tri() -> Triangle3 {
+        Triangle3::new(Vec3::ZERO, Vec3::X, Vec3::Y)
+    }
+
+    #[test]
+    fn hits_from_both_sides_with_t_in_units_of_dir() {
+        let down = Ray3::new(Vec3::new(0.2, 0.2, 1.0), Vec3::new(0.0, 0.0, -2.0)).expect("ray");
+        assert_eq!(tri().ray_hit(&down), Some(0.5));
+        let up = Ray3::new(Vec3::new(0.2, 0.2, -1.0), Vec3::Z).expect("ray");
+        assert_eq!(tri().ray_hit(&up), Some(1.0));
+        let away = Ray3::new(Vec3::new(0.2, 0.2, 1.0), Vec3::Z).expect("ray");
+        assert_eq!(tri().ray_hit(&away), None);
+    }
+
+    #[test]
+    fn ray_in_the_plane_and_degenerate_triangles_miss() {
+        let grazing = Ray3::new(Vec3::new(-1.0, 0.1, 0.0), Vec3::X).expect("ray");
+        assert_eq!(tri().ray_hit(&grazing), None);
+        let flat = Triangle3::new(Vec3::ZERO, Vec3::X, Vec3::X * 2.0);
+        let down = Ray3::new(Vec3::new(0.5, 0.0, 1.0), -Vec3::Z).expect("ray");
+        assert_eq!(flat.ray_hit(&down), None);
+        assert_eq!(flat.closest_point(Vec3::new(0.5, 1.0, 0.0)), Vec3::new(0.5, 0.0, 0.0));
+    }
+
+    #[test]
+    fn closest_point_regions() {
+        let t = tri();
+        assert_eq!(t.closest_point(Vec3::new(-1.0, -1.0, 3.0)), Vec3::ZERO);
+        assert_eq!(t.closest_point(Vec3::new(0.25, 0.25, 3.0)), Vec3::new(0.25, 0.25, 0.0));
+        assert_eq!(t.closest_point(Vec3::new(0.5, -2.0, 0.0)), Vec3::new(0.5, 0.0, 0.0));
+        assert_eq!(t.closest_point(Vec3::new(2.0, 2.0, 0.0)), Vec3::new(0.5, 0.5, 0.0));
+    }
+}

@@ -1,0 +1,71 @@
+//! Rays `p(t) = e + t d`, validated once at construction.
+
+use crate::Vector;
+use crate::error::{GeometryError, check_finite};
+
+/// A ray `p(t) = origin + t · dir` for `t >= 0`, in 2D ([`Ray2`](crate::Ray2)) or 3D
+/// ([`Ray3`](crate::Ray3)).
+///
+/// The direction need not have unit length: `t` is measured in units of `dir`, exactly as in
+/// the lecture's `p(t) = e + t (s - e)`, where `t = 1` is the point `s`. Construction rejects
+/// non-finite coordinates and a zero direction, so every query can trust its ray.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Ray<V: Vector> {
+    origin: V,
+    dir: V,
+    inv_dir: V,
+}
+
+impl<V: Vector> Ray<V> {
+    /// A ray from `origin` along `dir`.
+    ///
+    /// # Errors
+    /// [`GeometryError::NonFinite`] when a coordinate is NaN or infinite;
+    /// [`GeometryError::ZeroDirection`] when `dir` is zero (`-0.0` counts as zero).
+    pub fn new(origin: V, dir: V) -> Result<Self, GeometryError> {
+        check_finite(|| "ray origin".into(), origin)?;
+        check_finite(|| "ray direction".into(), dir)?;
+        if dir == V::ZERO {
+            return Err(GeometryError::ZeroDirection);
+        }
+        // 1/±0 = ±inf is what the slab test wants; the zero components are handled there.
+        let mut inv_dir = V::ZERO;
+        for i in 0..V::DIM {
+            inv_dir.set_coord(i, 1.0 / dir.coord(i));
+        }
+        Ok(Self {
+            origin,
+            dir,
+            inv_dir,
+        })
+    }
+
+    /// The ray through `from` and `to`, with `t = 1` at `to` (the lecture's `e` and `s`).
+    ///
+    /// # Errors
+    /// As [`Ray::new`]; `from == to` gives [`GeometryError::ZeroDirection`].
+    pub fn through(from: V, to: V) -> Result<Self, GeometryError> {
+        check_finite(|| "ray end point".into(), to)?;
+        Self::new(from, to - from)
+    }
+
+    /// The origin `e`.
+    pub fn origin(&self) -> V {
+        self.origin
+    }
+
+    /// The direction `d` (not normalised).
+    pub fn dir(&self) -> V {
+        self.dir
+    }
+
+    /// Component-wise `1 / d`, with `±inf` where a component of `d` is `±0`.
+    pub fn inv_dir(&self) -> V {
+        self.inv_dir
+    }
+
+    /// The point `e + t d`.
+    pub fn at(&self, t: f32) -> V {
+        self.origin + self.dir * t
+    }
+}

@@ -1,0 +1,1 @@
+//! The public contract of issue 2, exercised exactly as code outside the repository uses it.
