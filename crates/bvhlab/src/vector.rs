@@ -11,11 +11,12 @@ use std::ops::{Add, Div, Mul, Neg, Sub};
 
 use glam::{DVec2, DVec3, Vec2, Vec3};
 
-use crate::math::eigen::{covariance, symmetric_eigenvectors};
+use crate::math::eigen::principal_components;
 use crate::primitive::{Primitive, Segment2, Triangle3};
 use crate::volume::ConvexHull;
 use crate::volume::hull_build2::monotone_chain;
 use crate::volume::hull_build3::quickhull;
+use crate::volume::obb::PcaFit;
 
 /// A point or direction in 2D ([`Vec2`]) or 3D ([`Vec3`]) space, with `f32` coordinates.
 ///
@@ -53,6 +54,8 @@ pub trait Vector:
     /// [`Triangle3`] in 3D. Convex hulls are bounded by these.
     type Facet: Primitive<Self> + Copy + Debug + PartialEq;
 
+    /// All coordinates equal to `value`.
+    fn splat(value: f32) -> Self;
     /// The unit vector along coordinate axis `i` (`i < DIM`).
     fn unit_axis(i: usize) -> Self;
     /// Coordinate `i`.
@@ -62,10 +65,13 @@ pub trait Vector:
     /// Dot product.
     fn dot(self, other: Self) -> f32;
     /// Component-wise minimum.
+    #[must_use]
     fn min(self, other: Self) -> Self;
     /// Component-wise maximum.
+    #[must_use]
     fn max(self, other: Self) -> Self;
     /// Component-wise absolute value.
+    #[must_use]
     fn abs(self) -> Self;
     /// Euclidean length.
     fn length(self) -> f32;
@@ -100,13 +106,19 @@ pub trait Vector:
     ///
     /// In 3D two convex polyhedra can be separated by a plane parallel to one edge of each,
     /// so the separating-axis theorem adds the cross products of edge pairs (Gottschalk, Lin
-    /// and Manocha, "OBBTree", SIGGRAPH 1996). In 2D face normals suffice, so this is `None`.
+    /// and Manocha, "`OBBTree`", SIGGRAPH 1996). In 2D face normals suffice, so this is `None`.
     /// Also `None` when the edges are (nearly) parallel: then a face axis already decides.
     fn edge_pair_axis(a: Self, b: Self) -> Option<Self>;
 
-    /// Principal axes of a point set: eigenvectors of its covariance matrix, by decreasing
-    /// variance, as a right-handed orthonormal frame.
-    fn principal_axes(points: &[Self]) -> Self::Axes;
+    /// Principal component analysis of a point set (the lecture's OBB fit, before the
+    /// extents): its centroid, covariance matrix, and principal axes, the eigenvectors of the
+    /// covariance by decreasing variance, as a right-handed orthonormal frame, with those
+    /// variances (eigenvalues). The arithmetic is `f64` Jacobi ([`crate::math::eigen`]).
+    ///
+    /// The points should be finite (the fits filter them first). No points, one point or
+    /// repeated eigenvalues (a square, a cube) still give an orthonormal frame: then any
+    /// orthonormal basis of the eigenspace is as principal as another.
+    fn principal_axes(points: &[Self]) -> PcaFit<Self>;
 
     /// The convex hull: monotone chain in 2D, quickhull in 3D.
     fn convex_hull(points: &[Self]) -> ConvexHull<Self>;
@@ -129,6 +141,9 @@ fn orthonormal_frame3(first: Vec3, second: Vec3) -> [Vec3; 3] {
 
 macro_rules! forward_glam_methods {
     () => {
+        fn splat(value: f32) -> Self {
+            Self::splat(value)
+        }
         fn coord(self, i: usize) -> f32 {
             self[i]
         }
@@ -202,10 +217,15 @@ impl Vector for Vec2 {
     fn edge_pair_axis(_: Self, _: Self) -> Option<Self> {
         None
     }
-    fn principal_axes(points: &[Self]) -> Self::Axes {
-        let cov = covariance(points.iter().map(|p| p.as_dvec2().to_array()));
-        let [major, _] = symmetric_eigenvectors(cov);
-        orthonormal_frame2(DVec2::from_array(major).as_vec2())
+    fn principal_axes(points: &[Self]) -> PcaFit<Self> {
+        let pca = principal_components(points.iter().map(|p| p.as_dvec2().to_array()));
+        let vec2 = |a: [f64; 2]| DVec2::from_array(a).as_vec2();
+        PcaFit {
+            mean: vec2(pca.mean),
+            covariance: pca.covariance.map(vec2),
+            axes: orthonormal_frame2(vec2(pca.axes[0])),
+            variances: vec2(pca.variances),
+        }
     }
     fn convex_hull(points: &[Self]) -> ConvexHull<Self> {
         monotone_chain(points)
@@ -251,13 +271,15 @@ impl Vector for Vec3 {
         let axis = a.try_normalize()?.cross(b.try_normalize()?);
         (axis.length_squared() > 1e-10).then(|| axis.normalize())
     }
-    fn principal_axes(points: &[Self]) -> Self::Axes {
-        let cov = covariance(points.iter().map(|p| p.as_dvec3().to_array()));
-        let [major, middle, _] = symmetric_eigenvectors(cov);
-        orthonormal_frame3(
-            DVec3::from_array(major).as_vec3(),
-            DVec3::from_array(middle).as_vec3(),
-        )
+    fn principal_axes(points: &[Self]) -> PcaFit<Self> {
+        let pca = principal_components(points.iter().map(|p| p.as_dvec3().to_array()));
+        let vec3 = |a: [f64; 3]| DVec3::from_array(a).as_vec3();
+        PcaFit {
+            mean: vec3(pca.mean),
+            covariance: pca.covariance.map(vec3),
+            axes: orthonormal_frame3(vec3(pca.axes[0]), vec3(pca.axes[1])),
+            variances: vec3(pca.variances),
+        }
     }
     fn convex_hull(points: &[Self]) -> ConvexHull<Self> {
         quickhull(points)

@@ -9,44 +9,94 @@
 ///
 /// Two passes (mean first, then centred products) avoid the cancellation of the one-pass
 /// formula `E[ppᵀ] - mean meanᵀ` for points far from the origin.
-pub fn covariance<const N: usize>(
-    points: impl Iterator<Item = [f64; N]> + Clone,
-) -> [[f64; N]; N] {
-    let mut mean = [0.0; N];
+#[must_use]
+pub fn covariance<const N: usize>(points: impl Iterator<Item = [f64; N]> + Clone) -> [[f64; N]; N] {
+    let mean = mean(points.clone());
+    let mut cov = [[0.0; N]; N];
     let mut count = 0usize;
-    for p in points.clone() {
-        for (m, x) in mean.iter_mut().zip(p) {
-            *m += x;
+    for p in points {
+        let d: [f64; N] = std::array::from_fn(|i| p[i] - mean[i]);
+        for (row, di) in cov.iter_mut().zip(d) {
+            for (x, dj) in row.iter_mut().zip(d) {
+                *x += di * dj;
+            }
         }
         count += 1;
     }
-    let mut cov = [[0.0; N]; N];
-    if count == 0 {
-        return cov;
-    }
-    for m in &mut mean {
-        *m /= count as f64;
-    }
-    for p in points {
-        for i in 0..N {
-            for j in 0..N {
-                cov[i][j] += (p[i] - mean[i]) * (p[j] - mean[j]);
-            }
-        }
-    }
-    for row in &mut cov {
-        for x in row.iter_mut() {
+    if count > 0 {
+        for x in cov.iter_mut().flatten() {
             *x /= count as f64;
         }
     }
     cov
 }
 
+/// What principal component analysis of a point set gives, in `f64`: see
+/// [`principal_components`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PrincipalComponents<const N: usize> {
+    /// The centroid `(1/n) Σ p`.
+    pub mean: [f64; N],
+    /// The covariance matrix, as from [`covariance`].
+    pub covariance: [[f64; N]; N],
+    /// The variances along the principal axes (the eigenvalues), largest first, never negative.
+    pub variances: [f64; N],
+    /// The principal axes (unit eigenvectors), in the order of `variances`.
+    pub axes: [[f64; N]; N],
+}
+
+/// The centroid `(1/n) Σ p`; zero for no points.
+#[must_use]
+pub fn mean<const N: usize>(points: impl Iterator<Item = [f64; N]>) -> [f64; N] {
+    let mut sum = [0.0; N];
+    let mut count = 0usize;
+    for p in points {
+        for (s, x) in sum.iter_mut().zip(p) {
+            *s += x;
+        }
+        count += 1;
+    }
+    if count > 0 {
+        for s in &mut sum {
+            *s /= count as f64;
+        }
+    }
+    sum
+}
+
+/// Principal component analysis: centroid, covariance, and its eigen-decomposition.
+///
+/// This is the lecture's OBB recipe up to the extents ("find the directions of maximum and
+/// minimum variance: the eigenvectors of the covariance matrix"). Rounding can make a zero
+/// eigenvalue come out as `-1e-20`; variances are clamped at zero since that is what they are.
+#[must_use]
+pub fn principal_components<const N: usize>(
+    points: impl Iterator<Item = [f64; N]> + Clone,
+) -> PrincipalComponents<N> {
+    let covariance = covariance(points.clone());
+    let (variances, axes) = symmetric_eigen(covariance);
+    PrincipalComponents {
+        mean: mean(points),
+        covariance,
+        variances: variances.map(|v| v.max(0.0)),
+        axes,
+    }
+}
+
 /// Unit eigenvectors of a symmetric matrix, ordered by decreasing eigenvalue.
 ///
 /// The result is always an orthonormal set, including for zero and repeated eigenvalues
 /// (any orthonormal basis of the eigenspace is then returned).
+#[must_use]
 pub fn symmetric_eigenvectors<const N: usize>(matrix: [[f64; N]; N]) -> [[f64; N]; N] {
+    symmetric_eigen(matrix).1
+}
+
+/// Eigenvalues and unit eigenvectors of a symmetric matrix, by decreasing eigenvalue: the
+/// cyclic Jacobi method. `vectors[i]` belongs to `values[i]`; the vectors are orthonormal, also
+/// for zero and repeated eigenvalues.
+#[must_use]
+pub fn symmetric_eigen<const N: usize>(matrix: [[f64; N]; N]) -> ([f64; N], [[f64; N]; N]) {
     let mut a = matrix;
     // Columns of `v` accumulate the rotations: v[k][i] is component k of eigenvector i.
     let mut v = [[0.0; N]; N];
@@ -73,27 +123,24 @@ pub fn symmetric_eigenvectors<const N: usize>(matrix: [[f64; N]; N]) -> [[f64; N
                 let t = theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt());
                 let c = 1.0 / (t * t + 1.0).sqrt();
                 let s = t * c;
-                for k in 0..N {
-                    let (akp, akq) = (a[k][p], a[k][q]);
-                    a[k][p] = c * akp - s * akq;
-                    a[k][q] = s * akp + c * akq;
+                // a <- Jᵀ a J: first the columns p and q, then the rows p and q.
+                for row in a.iter_mut().chain(v.iter_mut()) {
+                    let (kp, kq) = (row[p], row[q]);
+                    row[p] = c * kp - s * kq;
+                    row[q] = s * kp + c * kq;
                 }
-                for k in 0..N {
-                    let (apk, aqk) = (a[p][k], a[q][k]);
-                    a[p][k] = c * apk - s * aqk;
-                    a[q][k] = s * apk + c * aqk;
-                }
-                for row in &mut v {
-                    let (vkp, vkq) = (row[p], row[q]);
-                    row[p] = c * vkp - s * vkq;
-                    row[q] = s * vkp + c * vkq;
-                }
+                let (row_p, row_q) = (a[p], a[q]);
+                a[p] = std::array::from_fn(|k| c * row_p[k] - s * row_q[k]);
+                a[q] = std::array::from_fn(|k| s * row_p[k] + c * row_q[k]);
             }
         }
     }
     let mut order: [usize; N] = std::array::from_fn(|i| i);
     order.sort_by(|&i, &j| a[j][j].total_cmp(&a[i][i]));
-    order.map(|i| std::array::from_fn(|k| v[k][i]))
+    (
+        order.map(|i| a[i][i]),
+        order.map(|i| std::array::from_fn(|k| v[k][i])),
+    )
 }
 
 #[cfg(test)]
@@ -128,7 +175,10 @@ mod tests {
 
     #[test]
     fn repeated_and_zero_eigenvalues_still_give_an_orthonormal_basis() {
-        for m in [[[0.0; 3]; 3], [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]] {
+        for m in [
+            [[0.0; 3]; 3],
+            [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+        ] {
             let vs = symmetric_eigenvectors(m);
             for i in 0..3 {
                 for j in 0..3 {
@@ -137,6 +187,32 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn eigenvalues_belong_to_their_eigenvectors() {
+        let m = [[2.0, -1.0], [-1.0, 2.0]];
+        let (values, vectors) = symmetric_eigen(m);
+        assert!((values[0] - 3.0).abs() < 1e-12 && (values[1] - 1.0).abs() < 1e-12);
+        for (lambda, v) in values.iter().zip(&vectors) {
+            let mv = mul(&m, v);
+            assert!((0..2).all(|i| (mv[i] - lambda * v[i]).abs() < 1e-12));
+        }
+    }
+
+    #[test]
+    fn principal_components_of_points_on_a_line() {
+        // Points t (3, 4) + (1, 1) for t = -1, 0, 1: variance 25 · 2/3 along (3, 4)/5.
+        let points = [-1.0, 0.0, 1.0].map(|t| [1.0 + 3.0 * t, 1.0 + 4.0 * t]);
+        let pca = principal_components(points.into_iter());
+        assert_eq!(pca.mean, [1.0, 1.0]);
+        assert!((pca.variances[0] - 50.0 / 3.0).abs() < 1e-12);
+        assert!(
+            (0.0..1e-12).contains(&pca.variances[1]),
+            "clamped, never negative"
+        );
+        let along = pca.axes[0][0] * 0.6 + pca.axes[0][1] * 0.8;
+        assert!((along.abs() - 1.0).abs() < 1e-12);
     }
 
     #[test]
