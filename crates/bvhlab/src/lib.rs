@@ -22,7 +22,8 @@
 //! let sphere = Sphere2::welzl_fit(&points);
 //! let ray = Ray2::new(Vec2::new(-5.0, 0.0), Vec2::X)?;
 //! let (t_enter, t_exit) = sphere.ray_interval(&ray).expect("the ray passes the centre");
-//! assert!(t_enter < 5.0 && t_exit > 9.0);
+//! // The minimal circle is the one on the long side: centre (2, 0), radius 2.
+//! assert_eq!((t_enter, t_exit), (5.0, 9.0));
 //! # Ok::<(), bvhlab::GeometryError>(())
 //! ```
 
@@ -40,7 +41,7 @@ pub use primitive::{Primitive, Segment2, Triangle3};
 pub use ray::Ray;
 pub use vector::Vector;
 pub use volume::{
-    Aabb, AxisSource, AxisTest, BoundingVolume, ConvexHull, FitKind, FitReport, Obb,
+    Aabb, AxisSource, AxisTest, BoundingVolume, ConvexHull, FitKind, FitReport, Obb, PcaFit,
     SeparatingAxis, SlabTest, Sphere,
 };
 
@@ -66,6 +67,11 @@ pub type Obb3 = Obb<Vec3>;
 pub type ConvexHull2 = ConvexHull<Vec2>;
 /// A convex polyhedron.
 pub type ConvexHull3 = ConvexHull<Vec3>;
+
+/// The README's examples, compiled and run as doc tests so that they stay true.
+#[cfg(doctest)]
+#[doc = include_str!("../../../README.md")]
+pub struct ReadmeDoctests;
 
 /// The names most programs need: the query traits and the 2D/3D types.
 pub mod prelude {

@@ -3,8 +3,8 @@
 use glam::{DVec2, Vec2};
 
 use super::Primitive;
-use crate::volume::Aabb;
 use crate::Ray2;
+use crate::volume::Aabb;
 
 /// A line segment from `a` to `b` in the plane; a 2D scene is a slice of these.
 ///
@@ -134,6 +134,9 @@ mod tests {
         let s = Segment2::new(Vec2::ZERO, Vec2::new(2.0, 0.0));
         assert_eq!(s.closest_point(Vec2::new(-1.0, 1.0)), Vec2::ZERO);
         assert_eq!(s.closest_point(Vec2::new(1.0, 1.0)), Vec2::new(1.0, 0.0));
-        assert_eq!(Segment2::new(Vec2::ONE, Vec2::ONE).closest_point(Vec2::ZERO), Vec2::ONE);
+        assert_eq!(
+            Segment2::new(Vec2::ONE, Vec2::ONE).closest_point(Vec2::ZERO),
+            Vec2::ONE
+        );
     }
 }

@@ -3,8 +3,8 @@
 use glam::{DVec3, Vec3};
 
 use super::Primitive;
-use crate::volume::Aabb;
 use crate::Ray3;
+use crate::volume::Aabb;
 
 /// A triangle with corners `a`, `b`, `c`; meshes are slices of these.
 ///
@@ -147,10 +147,14 @@ impl Triangle3 {
             };
             s + (e - s) * t
         };
-        [on_edge(self.a, self.b), on_edge(self.b, self.c), on_edge(self.c, self.a)]
-            .into_iter()
-            .min_by(|x, y| x.distance_squared(p).total_cmp(&y.distance_squared(p)))
-            .unwrap_or(self.a)
+        [
+            on_edge(self.a, self.b),
+            on_edge(self.b, self.c),
+            on_edge(self.c, self.a),
+        ]
+        .into_iter()
+        .min_by(|x, y| x.distance_squared(p).total_cmp(&y.distance_squared(p)))
+        .unwrap_or(self.a)
     }
 
     /// The area.
@@ -169,7 +173,10 @@ impl Triangle3 {
 
 impl Primitive<Vec3> for Triangle3 {
     fn bounds(&self) -> Aabb<Vec3> {
-        Aabb::new(self.a.min(self.b).min(self.c), self.a.max(self.b).max(self.c))
+        Aabb::new(
+            self.a.min(self.b).min(self.c),
+            self.a.max(self.b).max(self.c),
+        )
     }
     fn centroid(&self) -> Vec3 {
         (self.a + self.b + self.c) / 3.0
@@ -216,15 +223,27 @@ mod tests {
         let flat = Triangle3::new(Vec3::ZERO, Vec3::X, Vec3::X * 2.0);
         let down = Ray3::new(Vec3::new(0.5, 0.0, 1.0), -Vec3::Z).expect("ray");
         assert_eq!(flat.ray_hit(&down), None);
-        assert_eq!(flat.closest_point(Vec3::new(0.5, 1.0, 0.0)), Vec3::new(0.5, 0.0, 0.0));
+        assert_eq!(
+            flat.closest_point(Vec3::new(0.5, 1.0, 0.0)),
+            Vec3::new(0.5, 0.0, 0.0)
+        );
     }
 
     #[test]
     fn closest_point_regions() {
         let t = tri();
         assert_eq!(t.closest_point(Vec3::new(-1.0, -1.0, 3.0)), Vec3::ZERO);
-        assert_eq!(t.closest_point(Vec3::new(0.25, 0.25, 3.0)), Vec3::new(0.25, 0.25, 0.0));
-        assert_eq!(t.closest_point(Vec3::new(0.5, -2.0, 0.0)), Vec3::new(0.5, 0.0, 0.0));
-        assert_eq!(t.closest_point(Vec3::new(2.0, 2.0, 0.0)), Vec3::new(0.5, 0.5, 0.0));
+        assert_eq!(
+            t.closest_point(Vec3::new(0.25, 0.25, 3.0)),
+            Vec3::new(0.25, 0.25, 0.0)
+        );
+        assert_eq!(
+            t.closest_point(Vec3::new(0.5, -2.0, 0.0)),
+            Vec3::new(0.5, 0.0, 0.0)
+        );
+        assert_eq!(
+            t.closest_point(Vec3::new(2.0, 2.0, 0.0)),
+            Vec3::new(0.5, 0.5, 0.0)
+        );
     }
 }

@@ -164,7 +164,8 @@ impl<V: Vector> BoundingVolume for Aabb<V> {
     }
 
     fn contains(&self, point: V) -> bool {
-        (0..V::DIM).all(|i| self.min.coord(i) <= point.coord(i) && point.coord(i) <= self.max.coord(i))
+        (0..V::DIM)
+            .all(|i| self.min.coord(i) <= point.coord(i) && point.coord(i) <= self.max.coord(i))
     }
 
     fn overlaps(&self, other: &Self) -> bool {

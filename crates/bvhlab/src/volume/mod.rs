@@ -16,7 +16,7 @@ pub mod tightness;
 
 pub use aabb::{Aabb, SlabTest};
 pub use hull::ConvexHull;
-pub use obb::Obb;
+pub use obb::{Obb, PcaFit};
 pub use obb_sat::{AxisSource, AxisTest, SeparatingAxis};
 pub use sphere::Sphere;
 pub use tightness::{FitKind, FitReport};

@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Runs every check of bvh-lab, exactly as CI does: it is the README's test command.
+# On a fresh machine it first installs what it needs (the wasm target, rustfmt, clippy);
+# those steps take seconds when already done.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+step() { printf '\n==> %s\n' "$*"; }
+
+step "toolchain: wasm32 target, rustfmt, clippy"
+rustup target add wasm32-unknown-unknown
+rustup component add rustfmt clippy
+
+step "format"
+cargo fmt --all -- --check
+
+step "tests (native)"
+cargo test --workspace --all-targets
+cargo test --workspace --doc
+
+step "lints (native, then the core for wasm32)"
+cargo clippy --workspace --all-targets -- -D warnings
+cargo clippy -p bvhlab --target wasm32-unknown-unknown -- -D warnings
+
+step "docs"
+RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps
+
+step "core builds for wasm32-unknown-unknown"
+cargo build -p bvhlab --release --target wasm32-unknown-unknown
+
+step "all checks passed"
