@@ -31,14 +31,20 @@ pub use glam;
 
 pub mod error;
 pub mod math;
+pub mod mesh;
 pub mod primitive;
 pub mod ray;
+pub mod structure;
 pub mod vector;
 pub mod volume;
 
 pub use error::GeometryError;
 pub use primitive::{Primitive, Segment2, Triangle3};
 pub use ray::Ray;
+pub use structure::{
+    BruteForce, Event, Hit, Nearest, NodeId, Observer, QueryCost, RangeShape, Recorder,
+    SpatialIndex, Stats, Traced,
+};
 pub use vector::Vector;
 pub use volume::{
     Aabb, AxisSource, AxisTest, BoundingVolume, ConvexHull, FitKind, FitReport, Obb, PcaFit,
@@ -76,6 +82,7 @@ pub struct ReadmeDoctests;
 /// The names most programs need: the query traits and the 2D/3D types.
 pub mod prelude {
     pub use crate::primitive::Primitive;
+    pub use crate::structure::SpatialIndex;
     pub use crate::vector::Vector;
     pub use crate::volume::BoundingVolume;
     pub use crate::{

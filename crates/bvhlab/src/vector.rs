@@ -52,7 +52,7 @@ pub trait Vector:
 
     /// The boundary element of a polytope in this dimension: a [`Segment2`] in 2D, a
     /// [`Triangle3`] in 3D. Convex hulls are bounded by these.
-    type Facet: Primitive<Self> + Copy + Debug + PartialEq;
+    type Facet: Primitive<Point = Self>;
 
     /// All coordinates equal to `value`.
     fn splat(value: f32) -> Self;

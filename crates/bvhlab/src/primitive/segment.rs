@@ -80,7 +80,9 @@ impl Segment2 {
     }
 }
 
-impl Primitive<Vec2> for Segment2 {
+impl Primitive for Segment2 {
+    type Point = Vec2;
+
     fn bounds(&self) -> Aabb<Vec2> {
         Aabb::new(self.a.min(self.b), self.a.max(self.b))
     }
@@ -99,6 +101,12 @@ impl Primitive<Vec2> for Segment2 {
     fn normal(&self) -> Vec2 {
         let e = self.b - self.a;
         Vec2::new(e.y, -e.x)
+    }
+    fn intersects_aabb(&self, aabb: &Aabb<Vec2>) -> bool {
+        super::overlap::segment2_aabb(self, aabb)
+    }
+    fn intersects(&self, other: &Self) -> bool {
+        super::overlap::segment2_segment2(self, other)
     }
     fn vertices(&self) -> impl Iterator<Item = Vec2> {
         [self.a, self.b].into_iter()

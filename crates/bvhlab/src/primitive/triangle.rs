@@ -171,7 +171,9 @@ impl Triangle3 {
     }
 }
 
-impl Primitive<Vec3> for Triangle3 {
+impl Primitive for Triangle3 {
+    type Point = Vec3;
+
     fn bounds(&self) -> Aabb<Vec3> {
         Aabb::new(
             self.a.min(self.b).min(self.c),
@@ -192,6 +194,12 @@ impl Primitive<Vec3> for Triangle3 {
     }
     fn normal(&self) -> Vec3 {
         (self.b - self.a).cross(self.c - self.a)
+    }
+    fn intersects_aabb(&self, aabb: &Aabb<Vec3>) -> bool {
+        super::overlap::triangle3_aabb(self, aabb)
+    }
+    fn intersects(&self, other: &Self) -> bool {
+        super::overlap::triangle3_triangle3(self, other)
     }
     fn vertices(&self) -> impl Iterator<Item = Vec3> {
         [self.a, self.b, self.c].into_iter()

@@ -1,0 +1,1 @@
+//! PLACEHOLDER: triangle meshes from OBJ files (issue 3).

@@ -1,0 +1,158 @@
+//! Spatial data structures (lecture §3) and the one query interface they all answer.
+//!
+//! Every structure implements [`SpatialIndex`]: ray first hit, any hit and all hits, k
+//! nearest (closest point for k = 1), range and collision queries, each in a plain form and in
+//! an `_observed` form that reports every step to an [`Observer`] and returns its
+//! [`QueryCost`]. [`BruteForce`] answers the same queries by testing every primitive: it is the
+//! reference the tests compare against and the baseline the lab shows beside each structure.
+
+pub mod brute_force;
+pub mod bsp;
+pub mod bvh;
+pub mod grid;
+pub mod kdtree;
+pub mod mailbox;
+pub mod observe;
+pub mod octree;
+pub mod query;
+pub mod stats;
+
+pub use brute_force::BruteForce;
+pub use mailbox::Mailbox;
+pub use observe::{Event, NodeId, Observer, PrimitiveResult, PruneReason, Recorder};
+pub use query::{Hit, HitTracker, Nearest, NearestSet, QueryCost, RangeShape, Traced};
+pub use stats::{Stats, ValidationError};
+
+use crate::error::{GeometryError, check_finite};
+use crate::{Primitive, Ray};
+
+/// The vector type a structure works in.
+pub type PointOf<S> = <<S as SpatialIndex>::Prim as Primitive>::Point;
+
+/// The queries every spatial structure answers, exactly.
+///
+/// Primitives are named by their index in the slice the structure was built from. Answers
+/// are deterministic and equal to [`BruteForce`]'s: hits at equal `t` and neighbours at equal
+/// distance are ordered by index. A query point with a NaN or infinite coordinate gets no
+/// answer (`None` or empty); the `checked_` forms report it as an error instead.
+pub trait SpatialIndex {
+    /// What the structure stores.
+    type Prim: Primitive;
+
+    /// Builds the structure over `prims` with its default options. An empty slice gives an
+    /// empty structure whose queries find nothing.
+    fn build(prims: &[Self::Prim]) -> Self
+    where
+        Self: Sized;
+
+    /// The primitives, in input order.
+    fn primitives(&self) -> &[Self::Prim];
+
+    /// The first hit along the ray with `0 <= t <= t_max`, reporting each step.
+    fn ray_first_hit_observed<O: Observer<PointOf<Self>>>(
+        &self,
+        ray: &Ray<PointOf<Self>>,
+        t_max: f32,
+        observer: &mut O,
+    ) -> Traced<Option<Hit>>;
+
+    /// Some hit with `0 <= t <= t_max`, not necessarily the first (occlusion, shadow rays):
+    /// stops at the first one found.
+    fn ray_any_hit_observed<O: Observer<PointOf<Self>>>(
+        &self,
+        ray: &Ray<PointOf<Self>>,
+        t_max: f32,
+        observer: &mut O,
+    ) -> Traced<Option<Hit>>;
+
+    /// Every primitive the ray hits with `0 <= t <= t_max`, once each (at its first `t`),
+    /// sorted by `t`, then index.
+    fn ray_all_hits_observed<O: Observer<PointOf<Self>>>(
+        &self,
+        ray: &Ray<PointOf<Self>>,
+        t_max: f32,
+        observer: &mut O,
+    ) -> Traced<Vec<Hit>>;
+
+    /// The `k` primitives nearest to `point`, nearest first, by branch and bound.
+    fn k_nearest_observed<O: Observer<PointOf<Self>>>(
+        &self,
+        point: PointOf<Self>,
+        k: usize,
+        observer: &mut O,
+    ) -> Traced<Vec<Nearest<PointOf<Self>>>>;
+
+    /// The primitives that share a point with the region, by index, ascending.
+    fn range_observed<O: Observer<PointOf<Self>>>(
+        &self,
+        shape: &RangeShape<PointOf<Self>>,
+        observer: &mut O,
+    ) -> Traced<Vec<usize>>;
+
+    /// Every pair `(a, b)` of a primitive of `self` and a primitive of `other` that share a
+    /// point, ascending: the lecture's collision query, structure against structure.
+    fn collide_observed<O: Observer<PointOf<Self>>>(
+        &self,
+        other: &Self,
+        observer: &mut O,
+    ) -> Traced<Vec<(usize, usize)>>;
+
+    /// Node count, depth, leaf sizes, memory, duplicated references, SAH cost.
+    fn stats(&self) -> Stats;
+
+    /// Checks the structure's invariants: topology, every child inside its parent's bounds,
+    /// every primitive reachable where it must be.
+    ///
+    /// # Errors
+    /// A [`ValidationError`] saying what is wrong.
+    fn validate(&self) -> Result<(), ValidationError>;
+
+    /// The first hit along the ray with `0 <= t <= t_max`.
+    fn ray_first_hit(&self, ray: &Ray<PointOf<Self>>, t_max: f32) -> Option<Hit> {
+        self.ray_first_hit_observed(ray, t_max, &mut ()).answer
+    }
+
+    /// Some hit with `0 <= t <= t_max` (occlusion).
+    fn ray_any_hit(&self, ray: &Ray<PointOf<Self>>, t_max: f32) -> Option<Hit> {
+        self.ray_any_hit_observed(ray, t_max, &mut ()).answer
+    }
+
+    /// Every hit with `0 <= t <= t_max`, sorted by `t`.
+    fn ray_all_hits(&self, ray: &Ray<PointOf<Self>>, t_max: f32) -> Vec<Hit> {
+        self.ray_all_hits_observed(ray, t_max, &mut ()).answer
+    }
+
+    /// The primitive nearest to `point`, its nearest point and the distance.
+    fn closest_point(&self, point: PointOf<Self>) -> Option<Nearest<PointOf<Self>>> {
+        self.k_nearest_observed(point, 1, &mut ())
+            .answer
+            .into_iter()
+            .next()
+    }
+
+    /// [`closest_point`](Self::closest_point), rejecting a non-finite query point.
+    ///
+    /// # Errors
+    /// [`GeometryError::NonFinite`] when a coordinate of `point` is NaN or infinite.
+    fn checked_closest_point(
+        &self,
+        point: PointOf<Self>,
+    ) -> Result<Option<Nearest<PointOf<Self>>>, GeometryError> {
+        check_finite(|| "query point".into(), point).map(|p| self.closest_point(p))
+    }
+
+    /// The `k` nearest primitives, nearest first.
+    fn k_nearest(&self, point: PointOf<Self>, k: usize) -> Vec<Nearest<PointOf<Self>>> {
+        self.k_nearest_observed(point, k, &mut ()).answer
+    }
+
+    /// The primitives that share a point with the region, ascending.
+    fn range(&self, shape: &RangeShape<PointOf<Self>>) -> Vec<usize> {
+        self.range_observed(shape, &mut ()).answer
+    }
+
+    /// Every overlapping pair between `self` and `other`, ascending.
+    fn collide(&self, other: &Self) -> Vec<(usize, usize)> {
+        self.collide_observed(other, &mut ()).answer
+    }
+}
