@@ -15,8 +15,11 @@ step "format"
 cargo fmt --all -- --check
 
 step "tests (native)"
-cargo test --workspace --all-targets
+cargo test --workspace --lib --bins --tests
 cargo test --workspace --doc
+
+step "benchmarks compile (run them with cargo bench; timings are not tests)"
+cargo bench --workspace --no-run
 
 step "lints (native, then the core for wasm32)"
 cargo clippy --workspace --all-targets -- -D warnings

@@ -4,6 +4,9 @@
 //! Everything here is generic over [`Vector`], so each check is written once and run in 2D
 //! and 3D.
 
+pub mod conformance;
+pub mod scenes;
+
 use std::path::PathBuf;
 
 use bvhlab::glam::DVec3;
