@@ -12,6 +12,8 @@
 
 use glam::{DVec3, Vec2};
 
+use crate::math::exact::{sign_of_sum, two_product, two_sum};
+
 /// Half a unit in the last place of 1.0: the relative rounding error of one `f64` operation.
 const EPS: f64 = f64::EPSILON / 2.0;
 
@@ -28,7 +30,7 @@ pub(in crate::volume) fn orient2d(a: Vec2, b: Vec2, c: Vec2) -> f64 {
     // Differences of f32 values need not be exact in f64, but products of two f32 values are
     // (24 + 24 bits < 53), and expanded the determinant is a sum of six such products.
     let m = |x: f32, y: f32| f64::from(x) * f64::from(y);
-    expansion_sign(&[
+    sign_of_sum([
         m(b.x, c.y),
         -m(b.x, a.y),
         -m(a.x, c.y),
@@ -121,51 +123,7 @@ fn exact_det3(rows: [[[f64; 2]; 3]; 3]) -> f64 {
             }
         }
     }
-    expansion_sign(&terms)
-}
-
-/// A value with the exact sign of `Σ terms`.
-///
-/// Shewchuk's grow-expansion: the running sum is kept as non-overlapping components of
-/// increasing magnitude, to which each term is added with [`two_sum`], whose rounding error
-/// becomes a new, smaller component. The sign of such an expansion is the sign of its largest
-/// non-zero component.
-fn expansion_sign(terms: &[f64]) -> f64 {
-    let mut expansion: Vec<f64> = Vec::with_capacity(terms.len());
-    for &term in terms {
-        let mut q = term;
-        let mut kept = 0;
-        for k in 0..expansion.len() {
-            let (sum, error) = two_sum(q, expansion[k]);
-            if error != 0.0 {
-                expansion[kept] = error;
-                kept += 1;
-            }
-            q = sum;
-        }
-        expansion.truncate(kept);
-        expansion.push(q);
-    }
-    expansion
-        .iter()
-        .rev()
-        .copied()
-        .find(|&x| x != 0.0)
-        .unwrap_or(0.0)
-}
-
-/// Knuth's two-sum: `a + b = sum + error` exactly.
-fn two_sum(a: f64, b: f64) -> (f64, f64) {
-    let sum = a + b;
-    let b_virtual = sum - a;
-    let a_virtual = sum - b_virtual;
-    (sum, (a - a_virtual) + (b - b_virtual))
-}
-
-/// `a · b = product + error` exactly (the error from a fused multiply-add).
-fn two_product(a: f64, b: f64) -> (f64, f64) {
-    let product = a * b;
-    (product, a.mul_add(b, -product))
+    sign_of_sum(terms)
 }
 
 #[cfg(test)]
