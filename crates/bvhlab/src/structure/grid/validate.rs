@@ -1,0 +1,169 @@
+//! The grid's invariants and numbers.
+
+use std::cmp::Ordering;
+
+use super::layout::Grid;
+use super::probe::is_placeable;
+use crate::structure::{Stats, ValidationError};
+use crate::{BoundingVolume, Primitive, Vector};
+
+/// Up to this many (cell, primitive) pairs, validation tests every primitive against every
+/// cell, independently of the build's candidate ranges.
+const EXHAUSTIVE_PAIRS: usize = 50_000;
+
+fn fail(message: String) -> Result<(), ValidationError> {
+    Err(ValidationError::new(message))
+}
+
+impl<P: Primitive> Grid<P> {
+    /// Cells, non-empty cells, the histogram of list lengths over all cells (bucket 0 counts
+    /// the empty cells), references (cell entries plus the unplaced primitives, which every
+    /// query tests), memory. A grid has no depth and no SAH cost.
+    pub(super) fn grid_stats(&self) -> Stats {
+        let cells = self.cell_count();
+        let sizes = (0..cells).map(|c| self.cell_primitives(c).len());
+        Stats {
+            nodes: cells,
+            leaves: sizes.clone().filter(|&n| n > 0).count(),
+            max_depth: 0,
+            leaf_sizes: Stats::leaf_size_histogram(sizes),
+            primitives: self.prims.len(),
+            references: self.cell_prims.len() + self.unplaced.len(),
+            memory_bytes: self.memory_bytes(),
+            sah_cost: None,
+        }
+    }
+
+    /// Checks the layout (planes, offsets, sorted lists), that the unplaced primitives are
+    /// exactly those with a non-finite coordinate, and that every primitive is listed in
+    /// exactly the cells it shares a point with: against every cell on moderate inputs, else
+    /// against the cells its box touches.
+    pub(super) fn check(&self) -> Result<(), ValidationError> {
+        self.check_layout()?;
+        for (i, prim) in self.prims.iter().enumerate() {
+            if is_placeable(prim) == self.unplaced.binary_search(&(i as u32)).is_ok() {
+                return fail(format!("primitive {i}: wrongly (un)placed"));
+            }
+            if is_placeable(prim) {
+                let b = prim.bounds();
+                if !(self.bounds.contains(b.min) && self.bounds.contains(b.max)) {
+                    return fail(format!("primitive {i} sticks out of the grid box"));
+                }
+            }
+        }
+        let placed = self.prims.len() - self.unplaced.len();
+        if self.cell_count().saturating_mul(placed) <= EXHAUSTIVE_PAIRS {
+            self.check_every_cell()
+        } else {
+            self.check_candidate_cells()
+        }
+    }
+
+    fn check_layout(&self) -> Result<(), ValidationError> {
+        let cells = self.cell_count();
+        let dim = P::Point::DIM;
+        if self.dims[dim..].iter().any(|&n| n != 1 && cells > 0) {
+            return fail(format!("unused axes must have one cell: {:?}", self.dims));
+        }
+        if self.cell_start.len() != cells + 1
+            || self.cell_start.first() != Some(&0)
+            || self.cell_start.last().map(|&n| n as usize) != Some(self.cell_prims.len())
+            || self.cell_start.windows(2).any(|w| w[0] > w[1])
+        {
+            return fail("cell offsets are not a partition of the lists".into());
+        }
+        if cells == 0 {
+            return Ok(());
+        }
+        for i in 0..dim {
+            let planes = &self.planes[i];
+            if planes.len() != self.dims[i] as usize + 1
+                || planes.first() != Some(&self.bounds.min.coord(i))
+                || planes.last() != Some(&self.bounds.max.coord(i))
+                || planes
+                    .windows(2)
+                    .any(|w| w[0].partial_cmp(&w[1]).is_none_or(Ordering::is_gt))
+            {
+                return fail(format!("the planes of axis {i} do not tile the grid box"));
+            }
+        }
+        for c in 0..cells {
+            let list = self.cell_primitives(c);
+            if list.windows(2).any(|w| w[0] >= w[1])
+                || list.iter().any(|&i| i as usize >= self.prims.len())
+            {
+                return fail(format!("cell {c}: list not ascending or out of range"));
+            }
+        }
+        Ok(())
+    }
+
+    /// Every placed primitive against every cell: listed exactly where it touches (or, should
+    /// the exact test refuse every cell, in all the cells its box touches; see `cells_of`).
+    fn check_every_cell(&self) -> Result<(), ValidationError> {
+        let mut expected = vec![Vec::new(); self.cell_count()];
+        let boxes: Vec<_> = (0..self.cell_count())
+            .map(|c| self.cell_box(self.cell_coords(c)))
+            .collect();
+        for (i, prim) in self.prims.iter().enumerate() {
+            if !is_placeable(prim) {
+                continue;
+            }
+            let mut touched = (0..boxes.len())
+                .filter(|&c| prim.intersects_aabb(&boxes[c]))
+                .peekable();
+            if touched.peek().is_none() {
+                let mut fallback = Vec::new();
+                self.cells_of(prim, &mut fallback);
+                for &c in &fallback {
+                    expected[c as usize].push(i as u32);
+                }
+            } else {
+                for c in touched {
+                    expected[c].push(i as u32);
+                }
+            }
+        }
+        for (c, want) in expected.iter().enumerate() {
+            if want.as_slice() != self.cell_primitives(c) {
+                return fail(format!(
+                    "cell {c} {:?} lists {:?}, but these touch it: {want:?}",
+                    self.cell_coords(c),
+                    self.cell_primitives(c)
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// Every placed primitive against the cells its box touches.
+    fn check_candidate_cells(&self) -> Result<(), ValidationError> {
+        let mut cells = Vec::new();
+        let mut total = 0;
+        for (i, prim) in self.prims.iter().enumerate() {
+            if !is_placeable(prim) {
+                continue;
+            }
+            self.cells_of(prim, &mut cells);
+            total += cells.len();
+            for &c in &cells {
+                let listed = self.cell_primitives(c as usize).binary_search(&(i as u32));
+                if listed.is_err() {
+                    return fail(format!("primitive {i} touches cell {c} but is not listed"));
+                }
+                if !prim.intersects_aabb(&self.cell_box(self.cell_coords(c as usize))) {
+                    return fail(format!(
+                        "cell {c} lists primitive {i}, which does not touch it"
+                    ));
+                }
+            }
+        }
+        if total != self.cell_prims.len() {
+            return fail(format!(
+                "{} references, but the primitives touch {total} cells",
+                self.cell_prims.len()
+            ));
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,91 @@
+//! How a k-d tree is built: which builder, and when to stop splitting.
+
+/// How the median builder picks a node's split axis.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum AxisRule {
+    /// The longest axis of the node's cell (the lecture's choice for top-down builds).
+    #[default]
+    LongestAxis,
+    /// `depth mod dimension`: x, y, (z,) x, ... as in Bentley's original k-d tree (1975).
+    RoundRobin,
+}
+
+/// The cost model of the surface area heuristic, pbrt-v3's (§4.4.2, after `MacDonald` and
+/// Booth 1990): splitting costs `traversal + intersection · (1 - bonus) · (p_below n_below +
+/// p_above n_above)`, where `p` is the child cell's surface area (perimeter in 2D) over the
+/// node's, and `bonus` is `empty_bonus` when one child is empty; a leaf costs
+/// `intersection · n`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SahCosts {
+    /// The cost of visiting an inner node.
+    pub traversal: f32,
+    /// The cost of one primitive test.
+    pub intersection: f32,
+    /// The discount, in `[0, 1]`, on a split that leaves one child empty: cutting off empty
+    /// space lets rays skip it.
+    pub empty_bonus: f32,
+}
+
+impl Default for SahCosts {
+    /// pbrt-v3's defaults: 1, 80, 0.5.
+    fn default() -> Self {
+        Self {
+            traversal: 1.0,
+            intersection: 80.0,
+            empty_bonus: 0.5,
+        }
+    }
+}
+
+/// Which algorithm chooses the splitting planes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum KdBuilder {
+    /// Split at the median of the primitives' centres (Bentley 1975), along the axis the rule
+    /// picks; the spatial midpoint when the median lies on the cell's boundary.
+    Median(AxisRule),
+    /// The plane of least SAH cost among all primitive bound edges, found by a sweep over
+    /// sorted edge events kept sorted from node to node: O(n log n) in total (Wald and
+    /// Havran, "On building fast kd-Trees for Ray Tracing, and on doing that in O(N log N)",
+    /// 2006).
+    Sah(SahCosts),
+}
+
+/// How a [`KdTree`](super::KdTree) is built.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct KdTreeOptions {
+    /// The split algorithm.
+    pub builder: KdBuilder,
+    /// A node with at most this many primitive references becomes a leaf (at least 1).
+    pub leaf_size: usize,
+    /// The deepest a leaf may be; `None`: pbrt's `8 + 1.3 log2 n` for the SAH builder,
+    /// `⌈log2(n / leaf_size)⌉ + 1` for the median builder. Never more than
+    /// [`DEPTH_LIMIT`](super::build::DEPTH_LIMIT).
+    pub max_depth: Option<usize>,
+}
+
+impl Default for KdTreeOptions {
+    /// The SAH builder with pbrt's costs, splitting down to one primitive where it pays.
+    fn default() -> Self {
+        Self::sah()
+    }
+}
+
+impl KdTreeOptions {
+    /// The SAH builder with pbrt-v3's costs and leaf size 1 (the cost model decides).
+    pub fn sah() -> Self {
+        Self {
+            builder: KdBuilder::Sah(SahCosts::default()),
+            leaf_size: 1,
+            max_depth: None,
+        }
+    }
+
+    /// The median builder with the given axis rule and leaves of up to 4 primitives.
+    pub fn median(rule: AxisRule) -> Self {
+        Self {
+            builder: KdBuilder::Median(rule),
+            leaf_size: 4,
+            max_depth: None,
+        }
+    }
+}

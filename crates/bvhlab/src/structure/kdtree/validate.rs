@@ -1,0 +1,92 @@
+//! Checking a k-d tree: the depth-first layout, cells nested in their parents, and every
+//! primitive stored in every leaf whose cell it reaches into.
+
+use super::KdTree;
+use super::build::{DEPTH_LIMIT, is_finite_box};
+use super::layout::KdNode;
+use crate::structure::ValidationError;
+use crate::structure::bsp::plane_tree::PlaneTree as _;
+use crate::structure::bsp::plane_tree_check::{check_coverage, check_layout, check_nesting};
+use crate::volume::{Aabb, BoundingVolume};
+use crate::{Primitive, Vector};
+
+/// Up to this many primitives the coverage check is exact (one exact primitive-box test per
+/// primitive and cell it reaches); above, it only checks that every primitive is stored.
+pub const EXACT_COVERAGE_LIMIT: usize = 100_000;
+
+/// The cell's interior, approximated from inside by moving each face one `f32` step inwards;
+/// `None` when the cell is too thin to have one.
+fn interior<V: Vector>(cell: &Aabb<V>) -> Option<Aabb<V>> {
+    let mut inner = *cell;
+    for axis in 0..V::DIM {
+        let (lo, hi) = (
+            cell.min.coord(axis).next_up(),
+            cell.max.coord(axis).next_down(),
+        );
+        if lo > hi {
+            return None;
+        }
+        inner.min.set_coord(axis, lo);
+        inner.max.set_coord(axis, hi);
+    }
+    Some(inner)
+}
+
+/// Checks the tree's invariants:
+/// - the nodes form one tree in depth-first order, leaves list valid indices once each, no
+///   leaf is deeper than [`DEPTH_LIMIT`], split axes exist in this dimension;
+/// - the root cell is the box of the primitives with finite coordinates, and every split
+///   lies inside its node's cell (so children's cells lie inside their parent's);
+/// - every such primitive is stored, and (up to [`EXACT_COVERAGE_LIMIT`] primitives) in
+///   every leaf whose cell's interior it reaches, checked with the exact
+///   [`Primitive::intersects_aabb`]. A primitive that only touches a cell's boundary may be
+///   stored on the other side of it: the closed neighbouring cell holds the touching points.
+///
+/// # Errors
+/// The first violation found.
+pub fn validate<P: Primitive>(tree: &KdTree<P>) -> Result<(), ValidationError> {
+    let finite = tree
+        .prims()
+        .iter()
+        .map(Primitive::bounds)
+        .filter(is_finite_box)
+        .fold(Aabb::EMPTY, |c: Aabb<P::Point>, b| c.merge(&b));
+    if !tree.nodes().is_empty() && finite != tree.root_cell() {
+        return Err(ValidationError::new(format!(
+            "the root cell {:?} is not the box of the primitives {finite:?}",
+            tree.root_cell()
+        )));
+    }
+    let facts = check_layout(tree)?;
+    check_nesting(tree, &facts)?;
+    for (node, fact) in facts.iter().enumerate() {
+        let n: &KdNode = &tree.nodes()[node];
+        if fact.depth as usize > DEPTH_LIMIT {
+            return Err(ValidationError::new(format!(
+                "node {node} is at depth {}",
+                fact.depth
+            )));
+        }
+        if !n.is_leaf() {
+            let (lo, hi) = (
+                fact.bound.min.coord(n.axis()),
+                fact.bound.max.coord(n.axis()),
+            );
+            if n.axis() >= P::Point::DIM || !(lo <= n.split() && n.split() <= hi) {
+                return Err(ValidationError::new(format!(
+                    "node {node} splits axis {} at {} outside its cell [{lo}, {hi}]",
+                    n.axis(),
+                    n.split()
+                )));
+            }
+        }
+    }
+    let exact = tree.prims().len() <= EXACT_COVERAGE_LIMIT;
+    check_coverage(tree, &facts, |_, children, prim, facts| {
+        children.map(|child| {
+            exact
+                && interior(&facts[child as usize].bound)
+                    .is_some_and(|inside| prim.intersects_aabb(&inside))
+        })
+    })
+}

@@ -1,0 +1,154 @@
+//! The 2^D tree's invariants and numbers.
+
+use super::build::{Split, child_mask};
+use super::layout::{Orthtree, child_box_at, split_point};
+use crate::structure::grid::probe::is_placeable;
+use crate::structure::stats::sah_cost_boxes;
+use crate::structure::{NodeId, Stats, ValidationError};
+use crate::{BoundingVolume, Primitive};
+
+/// Up to this many (leaf, primitive) pairs, validation also tests every primitive against
+/// every leaf, independently of the build's rule.
+const EXHAUSTIVE_PAIRS: usize = 50_000;
+
+fn fail(message: String) -> Result<(), ValidationError> {
+    Err(ValidationError::new(message))
+}
+
+impl<P: Primitive> Orthtree<P> {
+    /// Nodes, leaves (empty ones included: the histogram's bucket 0 counts them), depth,
+    /// references (leaf entries plus the unplaced primitives, which every query tests),
+    /// memory, and the SAH cost with the cells' boxes as node regions.
+    pub(super) fn tree_stats(&self) -> Stats {
+        let cells = self.cells();
+        let leaves = cells.iter().filter_map(|c| c.prims.map(<[u32]>::len));
+        Stats {
+            nodes: cells.len(),
+            leaves: leaves.clone().count(),
+            max_depth: cells.iter().map(|c| c.depth as usize).max().unwrap_or(0),
+            leaf_sizes: Stats::leaf_size_histogram(leaves),
+            primitives: self.prims.len(),
+            references: self.refs.len() + self.unplaced.len(),
+            memory_bytes: self.memory_bytes(),
+            sah_cost: sah_cost_boxes(cells.iter().map(|c| (c.bounds, c.prims.map(<[u32]>::len)))),
+        }
+    }
+
+    /// Checks the topology (every node reached once from the root, children after their
+    /// parent, within the depth limit), that each child's box lies in its parent's, that the
+    /// leaves' lists partition the reference array, that the unplaced primitives are exactly
+    /// those with a non-finite coordinate, and that every leaf lists exactly the primitives
+    /// that share a point with it (descending from the root with the build's rule, and on
+    /// moderate inputs also against every leaf independently).
+    pub(super) fn check(&self) -> Result<(), ValidationError> {
+        for (i, prim) in self.prims.iter().enumerate() {
+            if is_placeable(prim) == self.unplaced.binary_search(&(i as u32)).is_ok() {
+                return fail(format!("primitive {i}: wrongly (un)placed"));
+            }
+        }
+        let placed: Vec<u32> = (0..self.prims.len() as u32)
+            .filter(|&i| is_placeable(&self.prims[i as usize]))
+            .collect();
+        if self.nodes.is_empty() {
+            return if placed.is_empty() && self.refs.is_empty() {
+                Ok(())
+            } else {
+                fail("no nodes, but primitives to place".into())
+            };
+        }
+        for &i in &placed {
+            let b = self.prims[i as usize].bounds();
+            if !(self.root.contains(b.min) && self.root.contains(b.max)) {
+                return fail(format!("primitive {i} sticks out of the root cell"));
+            }
+        }
+        let mut reached = vec![false; self.nodes.len()];
+        let mut ref_used = vec![false; self.refs.len()];
+        let mut stack = vec![(0u32, self.root, 0usize, placed.clone())];
+        while let Some((node, bounds, depth, expected)) = stack.pop() {
+            if std::mem::replace(&mut reached[node as usize], true) {
+                return fail(format!("node {node} is reached twice"));
+            }
+            if let Some(children) = self.children(NodeId(node)) {
+                if children.start <= node || children.end as usize > self.nodes.len() {
+                    return fail(format!("node {node}: children {children:?} out of order"));
+                }
+                if depth >= self.options.max_depth {
+                    return fail(format!("node {node} is split below the depth limit"));
+                }
+                let split = Split::new(&bounds);
+                let masks: Vec<u32> = expected
+                    .iter()
+                    .map(|&i| child_mask(&self.prims[i as usize], &split))
+                    .collect();
+                let mid = split_point(&bounds);
+                for (k, child) in children.enumerate() {
+                    let child_bounds = child_box_at(&bounds, mid, k);
+                    if !(bounds.contains(child_bounds.min) && bounds.contains(child_bounds.max)) {
+                        return fail(format!("child {child} is not inside node {node}"));
+                    }
+                    let mine = expected
+                        .iter()
+                        .zip(&masks)
+                        .filter(|&(_, mask)| mask >> k & 1 == 1)
+                        .map(|(&i, _)| i)
+                        .collect();
+                    stack.push((child, child_bounds, depth + 1, mine));
+                }
+                continue;
+            }
+            let n = self.nodes[node as usize];
+            let range = n.first as usize..n.first as usize + n.count as usize;
+            if range.end > self.refs.len() || ref_used[range.clone()].iter().any(|&u| u) {
+                return fail(format!(
+                    "leaf {node}: list {range:?} out of range or shared"
+                ));
+            }
+            ref_used[range.clone()].fill(true);
+            if let Some(&i) = self.refs[range.clone()]
+                .iter()
+                .find(|&&i| !self.prims[i as usize].intersects_aabb(&bounds))
+            {
+                return fail(format!(
+                    "leaf {node} lists primitive {i}, which does not touch it"
+                ));
+            }
+            if self.refs[range.clone()] != expected[..] {
+                return fail(format!(
+                    "leaf {node} lists {:?}, but these touch it: {expected:?}",
+                    &self.refs[range]
+                ));
+            }
+        }
+        if let Some(node) = reached.iter().position(|&r| !r) {
+            return fail(format!("node {node} is not reachable from the root"));
+        }
+        if ref_used.iter().any(|&u| !u) {
+            return fail("a reference belongs to no leaf".into());
+        }
+        self.check_every_leaf(&placed)
+    }
+
+    /// On moderate inputs: every primitive that shares a point with a leaf is listed there.
+    fn check_every_leaf(&self, placed: &[u32]) -> Result<(), ValidationError> {
+        let cells = self.cells();
+        let leaves = cells.iter().filter(|c| c.prims.is_some()).count();
+        if leaves.saturating_mul(placed.len()) > EXHAUSTIVE_PAIRS {
+            return Ok(());
+        }
+        for cell in cells.iter().filter(|c| c.prims.is_some()) {
+            let listed = cell.prims.unwrap_or_default();
+            for &i in placed {
+                if self.prims[i as usize].intersects_aabb(&cell.bounds)
+                    && listed.binary_search(&i).is_err()
+                {
+                    return fail(format!(
+                        "primitive {i} touches leaf {} but is not listed",
+                        cell.node.0
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+}
