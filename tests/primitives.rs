@@ -223,3 +223,22 @@ fn rays_through_shared_end_points_of_a_closed_polygon_never_slip_through() {
         }
     }
 }
+
+/// Regression: at 1e-20 scale the f32 edge products underflowed and a triangle behind the ray's
+/// origin was reported hit at t = -0 (found by the grid's conformance tests).
+#[test]
+fn tiny_triangles_behind_the_origin_are_not_hit_and_tiny_hits_keep_their_t() {
+    for s in [1.0f32, 1e-12, 1e-20, 1e-30, 1e20, 1e30] {
+        let tri = Triangle3::new(
+            Vec3::new(0.0, -1.0, -1.0) * s,
+            Vec3::new(0.0, 1.0, -1.0) * s,
+            Vec3::new(0.0, 0.0, 1.0) * s,
+        );
+        let away = Ray3::new(Vec3::new(5.0, 0.0, 0.0) * s, Vec3::X).expect("ray");
+        assert_eq!(tri.ray_hit(&away), None, "scale {s}");
+        let toward = Ray3::new(Vec3::new(5.0, 0.0, 0.0) * s, -Vec3::X * s).expect("ray");
+        assert_eq!(tri.ray_hit(&toward), Some(5.0), "scale {s}");
+        let p = Vec3::new(3.0, 0.0, 0.0) * s;
+        assert_eq!(tri.closest_point(p), Vec3::ZERO, "scale {s}");
+    }
+}

@@ -3,6 +3,7 @@
 
 use bvhlab::glam::{Vec2, Vec3};
 use bvhlab::structure::BruteForce;
+use bvhlab::{BspTree, Grid, KdTree, Orthtree};
 use bvhlab::{Segment2, SpatialIndex, Triangle3};
 use bvhlab_tests::conformance::{Budget, check_against_brute_force};
 use bvhlab_tests::scenes::{Map, random_segments, random_triangles, standard_scenes};
@@ -57,6 +58,10 @@ macro_rules! conformance {
 
 // The reference against itself: checks the harness (queries, scenes, comparisons) runs.
 conformance!(brute_force, BruteForce);
+conformance!(kd_tree, KdTree);
+conformance!(bsp_tree, BspTree);
+conformance!(grid, Grid);
+conformance!(orthtree, Orthtree);
 
 /// A broken structure: brute force that forgets the last primitive. The harness must catch it.
 #[derive(Debug)]
@@ -69,31 +74,66 @@ impl<P: bvhlab::Primitive> SpatialIndex for ForgetsOne<P> {
     type Prim = P;
     fn build(prims: &[P]) -> Self {
         let kept = &prims[..prims.len().saturating_sub(1)];
-        Self { all: prims.to_vec(), inner: BruteForce::build(kept) }
+        Self {
+            all: prims.to_vec(),
+            inner: BruteForce::build(kept),
+        }
     }
     fn primitives(&self) -> &[P] {
         &self.all
     }
-    fn ray_first_hit_observed<O: bvhlab::Observer<P::Point>>(&self, ray: &bvhlab::Ray<P::Point>, t_max: f32, o: &mut O) -> bvhlab::Traced<Option<bvhlab::Hit>> {
+    fn ray_first_hit_observed<O: bvhlab::Observer<P::Point>>(
+        &self,
+        ray: &bvhlab::Ray<P::Point>,
+        t_max: f32,
+        o: &mut O,
+    ) -> bvhlab::Traced<Option<bvhlab::Hit>> {
         self.inner.ray_first_hit_observed(ray, t_max, o)
     }
-    fn ray_any_hit_observed<O: bvhlab::Observer<P::Point>>(&self, ray: &bvhlab::Ray<P::Point>, t_max: f32, o: &mut O) -> bvhlab::Traced<Option<bvhlab::Hit>> {
+    fn ray_any_hit_observed<O: bvhlab::Observer<P::Point>>(
+        &self,
+        ray: &bvhlab::Ray<P::Point>,
+        t_max: f32,
+        o: &mut O,
+    ) -> bvhlab::Traced<Option<bvhlab::Hit>> {
         self.inner.ray_any_hit_observed(ray, t_max, o)
     }
-    fn ray_all_hits_observed<O: bvhlab::Observer<P::Point>>(&self, ray: &bvhlab::Ray<P::Point>, t_max: f32, o: &mut O) -> bvhlab::Traced<Vec<bvhlab::Hit>> {
+    fn ray_all_hits_observed<O: bvhlab::Observer<P::Point>>(
+        &self,
+        ray: &bvhlab::Ray<P::Point>,
+        t_max: f32,
+        o: &mut O,
+    ) -> bvhlab::Traced<Vec<bvhlab::Hit>> {
         self.inner.ray_all_hits_observed(ray, t_max, o)
     }
-    fn k_nearest_observed<O: bvhlab::Observer<P::Point>>(&self, p: P::Point, k: usize, o: &mut O) -> bvhlab::Traced<Vec<bvhlab::Nearest<P::Point>>> {
+    fn k_nearest_observed<O: bvhlab::Observer<P::Point>>(
+        &self,
+        p: P::Point,
+        k: usize,
+        o: &mut O,
+    ) -> bvhlab::Traced<Vec<bvhlab::Nearest<P::Point>>> {
         self.inner.k_nearest_observed(p, k, o)
     }
-    fn range_observed<O: bvhlab::Observer<P::Point>>(&self, s: &bvhlab::RangeShape<P::Point>, o: &mut O) -> bvhlab::Traced<Vec<usize>> {
+    fn range_observed<O: bvhlab::Observer<P::Point>>(
+        &self,
+        s: &bvhlab::RangeShape<P::Point>,
+        o: &mut O,
+    ) -> bvhlab::Traced<Vec<usize>> {
         self.inner.range_observed(s, o)
     }
-    fn collide_observed<O: bvhlab::Observer<P::Point>>(&self, other: &Self, o: &mut O) -> bvhlab::Traced<Vec<(usize, usize)>> {
+    fn collide_observed<O: bvhlab::Observer<P::Point>>(
+        &self,
+        other: &Self,
+        o: &mut O,
+    ) -> bvhlab::Traced<Vec<(usize, usize)>> {
         self.inner.collide_observed(&other.inner, o)
     }
     fn stats(&self) -> bvhlab::Stats {
-        bvhlab::Stats { primitives: self.all.len(), references: self.all.len(), ..self.inner.stats() }
+        bvhlab::Stats {
+            primitives: self.all.len(),
+            references: self.all.len(),
+            ..self.inner.stats()
+        }
     }
     fn validate(&self) -> Result<(), bvhlab::structure::ValidationError> {
         Ok(())
@@ -105,5 +145,13 @@ impl<P: bvhlab::Primitive> SpatialIndex for ForgetsOne<P> {
 fn the_harness_catches_a_structure_that_forgets_a_primitive() {
     let mut rng = rng(5);
     let scenes = standard_scenes(&mut rng, random_triangles);
-    check_against_brute_force::<ForgetsOne<Triangle3>>(&mut rng, &scenes[3], &scenes[3], &Budget { rays: 2000, points: 400 });
+    check_against_brute_force::<ForgetsOne<Triangle3>>(
+        &mut rng,
+        &scenes[3],
+        &scenes[3],
+        &Budget {
+            rays: 2000,
+            points: 400,
+        },
+    );
 }

@@ -20,7 +20,10 @@ pub struct Budget {
 
 impl Default for Budget {
     fn default() -> Self {
-        Self { rays: 120, points: 40 }
+        Self {
+            rays: 120,
+            points: 40,
+        }
     }
 }
 
@@ -31,12 +34,19 @@ fn close(a: f32, b: f32, scale: f32) -> bool {
 /// Rays for a scene: random ones through its box, rays aimed exactly at primitive vertices
 /// (they graze shared edges and vertices), and axis-parallel rays from vertex coordinates
 /// (they start on and run along split planes and cell boundaries).
-pub fn rays_for<P: Primitive>(rng: &mut ChaCha8Rng, prims: &[P], count: usize) -> Vec<Ray<P::Point>> {
+pub fn rays_for<P: Primitive>(
+    rng: &mut ChaCha8Rng,
+    prims: &[P],
+    count: usize,
+) -> Vec<Ray<P::Point>> {
     let bounds = prims.iter().fold(Aabb::EMPTY, |b, p| b.merge(&p.bounds()));
     let (centre, size) = if bounds.is_empty() {
         (P::Point::ZERO, 1.0)
     } else {
-        (bounds.center(), bounds.size().max_element().max(f32::MIN_POSITIVE * 1e6))
+        (
+            bounds.center(),
+            bounds.size().max_element().max(f32::MIN_POSITIVE * 1e6),
+        )
     };
     let vertices: Vec<P::Point> = prims.iter().flat_map(Primitive::vertices).collect();
     let mut rays = Vec::with_capacity(count);
@@ -77,14 +87,44 @@ pub fn check_against_brute_force<S>(
     let name = &scene.name;
     let structure = S::build(&scene.prims);
     let brute = BruteForce::build(&scene.prims);
-    structure.validate().unwrap_or_else(|e| panic!("{name}: {e}"));
+    structure
+        .validate()
+        .unwrap_or_else(|e| panic!("{name}: {e}"));
     let stats = structure.stats();
-    assert_eq!(stats.primitives, scene.prims.len(), "{name}: stats.primitives");
-    assert!(scene.prims.is_empty() || stats.references >= scene.prims.len(), "{name}: references {stats:?}");
+    assert_eq!(
+        stats.primitives,
+        scene.prims.len(),
+        "{name}: stats.primitives"
+    );
+    assert!(
+        scene.prims.is_empty() || stats.references >= scene.prims.len(),
+        "{name}: references {stats:?}"
+    );
 
-    let bounds = scene.prims.iter().fold(Aabb::EMPTY, |b, p| b.merge(&p.bounds()));
-    let scale = if bounds.is_empty() { 1.0 } else { bounds.size().max_element().max(bounds.center().abs().max_element()) };
+    check_rays(rng, scene, &structure, &brute, budget);
+    check_points(rng, scene, &structure, &brute, budget);
 
+    let other_structure = S::build(&other.prims);
+    let other_brute = BruteForce::build(&other.prims);
+    let mut pairs = structure.collide(&other_structure);
+    pairs.sort_unstable();
+    assert_eq!(
+        pairs,
+        brute.collide(&other_brute),
+        "{name} against {}: collision pairs",
+        other.name
+    );
+}
+
+/// First, any and all hits, plain and observed, for finite and infinite `t_max`.
+fn check_rays<S: SpatialIndex>(
+    rng: &mut ChaCha8Rng,
+    scene: &Scene<S::Prim>,
+    structure: &S,
+    brute: &BruteForce<S::Prim>,
+    budget: &Budget,
+) {
+    let name = &scene.name;
     for ray in rays_for(rng, &scene.prims, budget.rays) {
         for t_max in [f32::INFINITY, rng.random_range(0.0f32..1.5)] {
             let want = brute.ray_first_hit(&ray, t_max);
@@ -92,25 +132,41 @@ pub fn check_against_brute_force<S>(
             match (got, want) {
                 (None, None) => {}
                 (Some(g), Some(w)) => {
-                    assert!(close(g.t, w.t, 0.0), "{name}: first hit t {g:?} vs brute {w:?} for {ray:?}");
+                    assert!(
+                        close(g.t, w.t, 0.0),
+                        "{name}: first hit t {g:?} vs brute {w:?} for {ray:?}"
+                    );
                     if g.prim != w.prim {
                         let t_other = scene.prims[g.prim].ray_hit(&ray);
-                        assert_eq!(t_other, Some(w.t), "{name}: first hit {g:?} is not a tie with {w:?} for {ray:?}");
+                        assert_eq!(
+                            t_other,
+                            Some(w.t),
+                            "{name}: first hit {g:?} is not a tie with {w:?} for {ray:?}"
+                        );
                     }
                 }
-                _ => panic!("{name}: first hit {got:?} vs brute {want:?} for {ray:?} (t_max {t_max})"),
+                _ => panic!(
+                    "{name}: first hit {got:?} vs brute {want:?} for {ray:?} (t_max {t_max})"
+                ),
             }
             let mut recorder = Recorder::default();
             let observed = structure.ray_first_hit_observed(&ray, t_max, &mut recorder);
             assert_eq!(observed.answer, got, "{name}: observing changed the answer");
-            assert!(observed.cost.prim_tests as usize <= recorder.events.len() || scene.prims.is_empty() || observed.cost.prim_tests == 0);
+            assert!(
+                observed.cost.prim_tests as usize <= recorder.events.len()
+                    || scene.prims.is_empty()
+                    || observed.cost.prim_tests == 0
+            );
 
             let any = structure.ray_any_hit(&ray, t_max);
             match (any, want) {
                 (None, None) => {}
                 (Some(h), Some(_)) => {
                     let t = scene.prims[h.prim].ray_hit(&ray);
-                    assert!(t == Some(h.t) && h.t <= t_max, "{name}: any hit {h:?} is not a hit ({t:?})");
+                    assert!(
+                        t == Some(h.t) && h.t <= t_max,
+                        "{name}: any hit {h:?} is not a hit ({t:?})"
+                    );
                 }
                 _ => panic!("{name}: any hit {any:?} vs brute first hit {want:?} for {ray:?}"),
             }
@@ -122,11 +178,38 @@ pub fn check_against_brute_force<S>(
             got_prims.sort_unstable();
             want_prims.sort_unstable();
             assert_eq!(got_prims, want_prims, "{name}: all hits for {ray:?}");
-            assert!(all.windows(2).all(|w| w[0].t <= w[1].t), "{name}: all hits not sorted");
+            assert!(
+                all.windows(2).all(|w| w[0].t <= w[1].t),
+                "{name}: all hits not sorted"
+            );
         }
     }
+}
 
-    let mut points: Vec<PointOf<S>> = (0..budget.points).map(|_| bounds_point(rng, &bounds)).collect();
+/// k nearest (k = 1 and 5), ball and box ranges, and a NaN query point.
+fn check_points<S: SpatialIndex>(
+    rng: &mut ChaCha8Rng,
+    scene: &Scene<S::Prim>,
+    structure: &S,
+    brute: &BruteForce<S::Prim>,
+    budget: &Budget,
+) {
+    let name = &scene.name;
+    let bounds = scene
+        .prims
+        .iter()
+        .fold(Aabb::EMPTY, |b, p| b.merge(&p.bounds()));
+    let scale = if bounds.is_empty() {
+        1.0
+    } else {
+        bounds
+            .size()
+            .max_element()
+            .max(bounds.center().abs().max_element())
+    };
+    let mut points: Vec<PointOf<S>> = (0..budget.points)
+        .map(|_| bounds_point(rng, &bounds))
+        .collect();
     points.extend(scene.prims.iter().take(5).flat_map(Primitive::vertices));
     for point in points {
         for k in [1, 5] {
@@ -134,26 +217,37 @@ pub fn check_against_brute_force<S>(
             let want = brute.k_nearest(point, k);
             assert_eq!(got.len(), want.len(), "{name}: {k} nearest to {point:?}");
             for (g, w) in got.iter().zip(&want) {
-                assert!(close(g.distance, w.distance, 0.0), "{name}: {k} nearest to {point:?}: {got:?} vs {want:?}");
+                assert!(
+                    close(g.distance, w.distance, 0.0),
+                    "{name}: {k} nearest to {point:?}: {got:?} vs {want:?}"
+                );
                 let d = scene.prims[g.prim].distance(point);
-                assert!(close(d, g.distance, 0.0), "{name}: reported distance {g:?} but the primitive is {d} away");
+                assert!(
+                    close(d, g.distance, 0.0),
+                    "{name}: reported distance {g:?} but the primitive is {d} away"
+                );
             }
         }
         let radius = rng.random_range(0.0..0.3) * scale;
         let ball = RangeShape::Ball(Sphere::new(point, radius));
-        assert_eq!(structure.range(&ball), brute.range(&ball), "{name}: range {ball:?}");
+        assert_eq!(
+            structure.range(&ball),
+            brute.range(&ball),
+            "{name}: range {ball:?}"
+        );
         let corner = point + random_vector::<PointOf<S>>(rng, 0.3 * scale);
         let boxed = RangeShape::Box(Aabb::new(point.min(corner), point.max(corner)));
-        assert_eq!(structure.range(&boxed), brute.range(&boxed), "{name}: range {boxed:?}");
+        assert_eq!(
+            structure.range(&boxed),
+            brute.range(&boxed),
+            "{name}: range {boxed:?}"
+        );
     }
     let nan = <PointOf<S> as Vector>::splat(f32::NAN);
-    assert!(structure.closest_point(nan).is_none(), "{name}: a NaN query point must get no answer");
-
-    let other_structure = S::build(&other.prims);
-    let other_brute = BruteForce::build(&other.prims);
-    let mut pairs = structure.collide(&other_structure);
-    pairs.sort_unstable();
-    assert_eq!(pairs, brute.collide(&other_brute), "{name} against {}: collision pairs", other.name);
+    assert!(
+        structure.closest_point(nan).is_none(),
+        "{name}: a NaN query point must get no answer"
+    );
 }
 
 fn bounds_point<V: Vector>(rng: &mut ChaCha8Rng, bounds: &Aabb<V>) -> V {

@@ -15,7 +15,10 @@ pub struct Scene<P> {
 }
 
 fn scene<P>(name: impl Into<String>, prims: Vec<P>) -> Scene<P> {
-    Scene { name: name.into(), prims }
+    Scene {
+        name: name.into(),
+        prims,
+    }
 }
 
 /// Short random segments in `[-10, 10]^2`.
@@ -33,7 +36,11 @@ pub fn random_triangles(rng: &mut ChaCha8Rng, n: usize) -> Vec<Triangle3> {
     (0..n)
         .map(|_| {
             let a: Vec3 = random_vector(rng, 10.0);
-            Triangle3::new(a, a + random_vector::<Vec3>(rng, 1.5), a + random_vector::<Vec3>(rng, 1.5))
+            Triangle3::new(
+                a,
+                a + random_vector::<Vec3>(rng, 1.5),
+                a + random_vector::<Vec3>(rng, 1.5),
+            )
         })
         .collect()
 }

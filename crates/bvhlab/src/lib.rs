@@ -39,11 +39,12 @@ pub mod vector;
 pub mod volume;
 
 pub use error::GeometryError;
+pub use mesh::{Mesh, MeshError, MeshStats};
 pub use primitive::{Primitive, Segment2, Triangle3};
 pub use ray::Ray;
 pub use structure::{
-    BruteForce, Event, Hit, Nearest, NodeId, Observer, QueryCost, RangeShape, Recorder,
-    SpatialIndex, Stats, Traced,
+    BruteForce, BspTree, Event, Grid, Hit, KdTree, Nearest, NodeId, Observer, Orthtree, QueryCost,
+    RangeShape, Recorder, SpatialIndex, Stats, Traced,
 };
 pub use vector::Vector;
 pub use volume::{
@@ -79,6 +80,23 @@ pub type ConvexHull3 = ConvexHull<Vec3>;
 #[doc = include_str!("../../../README.md")]
 pub struct ReadmeDoctests;
 
+/// A k-d tree over 2D segments.
+pub type KdTree2 = KdTree<Segment2>;
+/// A k-d tree over triangles.
+pub type KdTree3 = KdTree<Triangle3>;
+/// A BSP tree over 2D segments (split by lines).
+pub type Bsp2 = BspTree<Segment2>;
+/// A BSP tree over triangles (split by planes).
+pub type Bsp3 = BspTree<Triangle3>;
+/// A uniform grid over 2D segments.
+pub type Grid2 = Grid<Segment2>;
+/// A uniform grid over triangles.
+pub type Grid3 = Grid<Triangle3>;
+/// A quadtree over 2D segments (the 2D orthtree).
+pub type Quadtree2 = Orthtree<Segment2>;
+/// An octree over triangles (the 3D orthtree).
+pub type Octree3 = Orthtree<Triangle3>;
+
 /// The names most programs need: the query traits and the 2D/3D types.
 pub mod prelude {
     pub use crate::primitive::Primitive;
@@ -86,7 +104,7 @@ pub mod prelude {
     pub use crate::vector::Vector;
     pub use crate::volume::BoundingVolume;
     pub use crate::{
-        Aabb2, Aabb3, ConvexHull2, ConvexHull3, GeometryError, Obb2, Obb3, Ray2, Ray3, Segment2,
-        Sphere2, Sphere3, Triangle3,
+        Aabb2, Aabb3, ConvexHull2, ConvexHull3, GeometryError, Mesh, Obb2, Obb3, Ray2, Ray3,
+        Segment2, Sphere2, Sphere3, Triangle3,
     };
 }

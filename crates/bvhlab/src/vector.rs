@@ -141,39 +141,51 @@ fn orthonormal_frame3(first: Vec3, second: Vec3) -> [Vec3; 3] {
 
 macro_rules! forward_glam_methods {
     () => {
+        #[inline]
         fn splat(value: f32) -> Self {
             Self::splat(value)
         }
+        #[inline]
         fn coord(self, i: usize) -> f32 {
             self[i]
         }
+        #[inline]
         fn set_coord(&mut self, i: usize, value: f32) {
             self[i] = value;
         }
+        #[inline]
         fn dot(self, other: Self) -> f32 {
             Self::dot(self, other)
         }
+        #[inline]
         fn min(self, other: Self) -> Self {
             Self::min(self, other)
         }
+        #[inline]
         fn max(self, other: Self) -> Self {
             Self::max(self, other)
         }
+        #[inline]
         fn abs(self) -> Self {
             Self::abs(self)
         }
+        #[inline]
         fn length(self) -> f32 {
             Self::length(self)
         }
+        #[inline]
         fn length_squared(self) -> f32 {
             Self::length_squared(self)
         }
+        #[inline]
         fn is_finite(self) -> bool {
             Self::is_finite(self)
         }
+        #[inline]
         fn max_element(self) -> f32 {
             Self::max_element(self)
         }
+        #[inline]
         fn min_element(self) -> f32 {
             Self::min_element(self)
         }
@@ -190,33 +202,43 @@ impl Vector for Vec2 {
 
     forward_glam_methods!();
 
+    #[inline]
     fn unit_axis(i: usize) -> Self {
         Vec2::AXES[i]
     }
+    #[inline]
     fn to_dvec3(self) -> DVec3 {
         self.as_dvec2().extend(0.0)
     }
+    #[inline]
     fn from_dvec3(v: DVec3) -> Self {
         v.truncate().as_vec2()
     }
+    #[inline]
     fn identity_axes() -> Self::Axes {
         Vec2::AXES
     }
+    #[inline]
     fn box_measure(size: Self) -> f32 {
         size.x * size.y
     }
+    #[inline]
     fn box_boundary_measure(size: Self) -> f32 {
         2.0 * (size.x + size.y)
     }
+    #[inline]
     fn ball_measure(r: f32) -> f32 {
         std::f32::consts::PI * r * r
     }
+    #[inline]
     fn ball_boundary_measure(r: f32) -> f32 {
         std::f32::consts::TAU * r
     }
+    #[inline]
     fn edge_pair_axis(_: Self, _: Self) -> Option<Self> {
         None
     }
+    #[inline]
     fn principal_axes(points: &[Self]) -> PcaFit<Self> {
         let pca = principal_components(points.iter().map(|p| p.as_dvec2().to_array()));
         let vec2 = |a: [f64; 2]| DVec2::from_array(a).as_vec2();
@@ -227,6 +249,7 @@ impl Vector for Vec2 {
             variances: vec2(pca.variances),
         }
     }
+    #[inline]
     fn convex_hull(points: &[Self]) -> ConvexHull<Self> {
         monotone_chain(points)
     }
@@ -242,35 +265,45 @@ impl Vector for Vec3 {
 
     forward_glam_methods!();
 
+    #[inline]
     fn unit_axis(i: usize) -> Self {
         Vec3::AXES[i]
     }
+    #[inline]
     fn to_dvec3(self) -> DVec3 {
         self.as_dvec3()
     }
+    #[inline]
     fn from_dvec3(v: DVec3) -> Self {
         v.as_vec3()
     }
+    #[inline]
     fn identity_axes() -> Self::Axes {
         Vec3::AXES
     }
+    #[inline]
     fn box_measure(size: Self) -> f32 {
         size.x * size.y * size.z
     }
+    #[inline]
     fn box_boundary_measure(size: Self) -> f32 {
         2.0 * (size.x * size.y + size.y * size.z + size.z * size.x)
     }
+    #[inline]
     fn ball_measure(r: f32) -> f32 {
         4.0 / 3.0 * std::f32::consts::PI * r * r * r
     }
+    #[inline]
     fn ball_boundary_measure(r: f32) -> f32 {
         4.0 * std::f32::consts::PI * r * r
     }
+    #[inline]
     fn edge_pair_axis(a: Self, b: Self) -> Option<Self> {
         // Normalising the edges first makes the parallel test independent of edge length.
         let axis = a.try_normalize()?.cross(b.try_normalize()?);
         (axis.length_squared() > 1e-10).then(|| axis.normalize())
     }
+    #[inline]
     fn principal_axes(points: &[Self]) -> PcaFit<Self> {
         let pca = principal_components(points.iter().map(|p| p.as_dvec3().to_array()));
         let vec3 = |a: [f64; 3]| DVec3::from_array(a).as_vec3();
@@ -281,6 +314,7 @@ impl Vector for Vec3 {
             variances: vec3(pca.variances),
         }
     }
+    #[inline]
     fn convex_hull(points: &[Self]) -> ConvexHull<Self> {
         quickhull(points)
     }

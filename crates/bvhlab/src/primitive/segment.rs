@@ -65,13 +65,14 @@ impl Segment2 {
     /// The point of the segment nearest to `p`: the projection of `p` on the line, clamped to
     /// the segment (Ericson, "Real-Time Collision Detection", §5.1.2).
     pub fn closest_point(&self, p: Vec2) -> Vec2 {
-        let e = self.b - self.a;
+        // In f64, so that tiny (1e-20) coordinates do not make the dot products subnormal.
+        let (a, e) = (self.a.as_dvec2(), (self.b.as_dvec2() - self.a.as_dvec2()));
         let len2 = e.length_squared();
         if len2 == 0.0 {
             return self.a;
         }
-        let s = ((p - self.a).dot(e) / len2).clamp(0.0, 1.0);
-        self.a + e * s
+        let s = ((p.as_dvec2() - a).dot(e) / len2).clamp(0.0, 1.0);
+        (a + e * s).as_vec2()
     }
 
     /// The segment's length.

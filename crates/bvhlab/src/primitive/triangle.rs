@@ -43,8 +43,9 @@ impl Triangle3 {
     /// then a 2D cross product of two transformed corners. A corner's transformed coordinates
     /// depend only on that corner and the ray, so triangles sharing an edge compute the same
     /// edge value with opposite signs, and a ray through a shared edge or vertex of a closed
-    /// mesh hits at least one of the triangles there. Exact zeros are re-evaluated in `f64`
-    /// as the paper prescribes. Both sides are hit; a ray in the triangle's plane is not.
+    /// mesh hits at least one of the triangles there. The edge tests and `t` are evaluated in
+    /// `f64` (the paper's fallback for exact zeros, made the rule), which also keeps them exact
+    /// in sign at any `f32` scale. Both sides are hit; a ray in the triangle's plane is not.
     pub fn ray_hit(&self, ray: &Ray3) -> Option<f32> {
         let d = ray.dir();
         // kz: the dominant axis of the direction; kx, ky follow it cyclically, swapped when
@@ -68,17 +69,15 @@ impl Triangle3 {
         };
         let (a, b, c) = (shear(self.a), shear(self.b), shear(self.c));
 
-        let mut u = c.x * b.y - c.y * b.x;
-        let mut v = a.x * c.y - a.y * c.x;
-        let mut w = b.x * a.y - b.y * a.x;
-        if u == 0.0 || v == 0.0 || w == 0.0 {
-            let edge = |p: Sheared, q: Sheared| {
-                (f64::from(p.x) * f64::from(q.y) - f64::from(p.y) * f64::from(q.x)) as f32
-            };
-            u = edge(c, b);
-            v = edge(a, c);
-            w = edge(b, a);
-        }
+        // Edge functions in f64: a product of two f32 values is exact there, so each edge
+        // value is rounded once, from that edge's two corners alone, and a shared edge gives
+        // exactly negated values in its two triangles (watertightness). f64 also keeps them
+        // from underflowing or overflowing at scales of 1e-20 or 1e20, where f32 products
+        // would.
+        let edge = |p: Sheared, q: Sheared| {
+            f64::from(p.x) * f64::from(q.y) - f64::from(p.y) * f64::from(q.x)
+        };
+        let (u, v, w) = (edge(c, b), edge(a, c), edge(b, a));
         if (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0) {
             return None;
         }
@@ -86,12 +85,12 @@ impl Triangle3 {
         if det == 0.0 {
             return None;
         }
-        let t_scaled = u * a.z + v * b.z + w * c.z;
+        let t_scaled = u * f64::from(a.z) + v * f64::from(b.z) + w * f64::from(c.z);
         // t = t_scaled / det must be >= 0: same sign, or zero.
         if (det > 0.0 && t_scaled < 0.0) || (det < 0.0 && t_scaled > 0.0) {
             return None;
         }
-        let t = t_scaled / det;
+        let t = (t_scaled / det) as f32;
         t.is_finite().then_some(t)
     }
 
@@ -101,44 +100,52 @@ impl Triangle3 {
     /// vertex, edge or face region `p` projects into using barycentric tests. A degenerate
     /// triangle falls back to the nearest of its three edges.
     pub fn closest_point(&self, p: Vec3) -> Vec3 {
-        let (a, b, c) = (self.a, self.b, self.c);
+        // In f64: at scales of 1e-20 the f32 dot products below would be subnormal and lose
+        // the region decisions; products of f32 differences are (nearly) exact in f64.
+        let (a, b, c, p) = (
+            self.a.as_dvec3(),
+            self.b.as_dvec3(),
+            self.c.as_dvec3(),
+            p.as_dvec3(),
+        );
         let (ab, ac, ap) = (b - a, c - a, p - a);
         let (d1, d2) = (ab.dot(ap), ac.dot(ap));
         if d1 <= 0.0 && d2 <= 0.0 {
-            return a;
+            return self.a;
         }
         let bp = p - b;
         let (d3, d4) = (ab.dot(bp), ac.dot(bp));
         if d3 >= 0.0 && d4 <= d3 {
-            return b;
+            return self.b;
         }
         let vc = d1 * d4 - d3 * d2;
         if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
-            return a + ab * (d1 / (d1 - d3));
+            return (a + ab * (d1 / (d1 - d3))).as_vec3();
         }
         let cp = p - c;
         let (d5, d6) = (ab.dot(cp), ac.dot(cp));
         if d6 >= 0.0 && d5 <= d6 {
-            return c;
+            return self.c;
         }
         let vb = d5 * d2 - d1 * d6;
         if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
-            return a + ac * (d2 / (d2 - d6));
+            return (a + ac * (d2 / (d2 - d6))).as_vec3();
         }
         let va = d3 * d6 - d5 * d4;
         if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
-            return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+            return (b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)))).as_vec3();
         }
         let sum = va + vb + vc;
         if sum > 0.0 && sum.is_finite() {
             // Inside the face region: barycentric coordinates (u, v, w) = (va, vb, vc) / sum.
-            return a + ab * (vb / sum) + ac * (vc / sum);
+            return (a + ab * (vb / sum) + ac * (vc / sum)).as_vec3();
         }
         self.closest_point_on_edges(p)
     }
 
-    fn closest_point_on_edges(&self, p: Vec3) -> Vec3 {
+    fn closest_point_on_edges(&self, p: DVec3) -> Vec3 {
         let on_edge = |s: Vec3, e: Vec3| {
+            let (s, e) = (s.as_dvec3(), e.as_dvec3());
             let len2 = (e - s).length_squared();
             let t = if len2 > 0.0 {
                 ((p - s).dot(e - s) / len2).clamp(0.0, 1.0)
@@ -154,7 +161,7 @@ impl Triangle3 {
         ]
         .into_iter()
         .min_by(|x, y| x.distance_squared(p).total_cmp(&y.distance_squared(p)))
-        .unwrap_or(self.a)
+        .map_or(self.a, DVec3::as_vec3)
     }
 
     /// The area.

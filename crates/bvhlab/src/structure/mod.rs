@@ -18,8 +18,12 @@ pub mod query;
 pub mod stats;
 
 pub use brute_force::BruteForce;
+pub use bsp::{BspOptions, BspTree};
+pub use grid::{Grid, GridOptions};
+pub use kdtree::{KdTree, KdTreeOptions};
 pub use mailbox::Mailbox;
 pub use observe::{Event, NodeId, Observer, PrimitiveResult, PruneReason, Recorder};
+pub use octree::{Orthtree, OrthtreeOptions};
 pub use query::{Hit, HitTracker, Nearest, NearestSet, QueryCost, RangeShape, Traced};
 pub use stats::{Stats, ValidationError};
 

@@ -133,8 +133,8 @@ pub enum Event<V: Vector> {
         /// Whether their volumes overlap.
         overlap: bool,
     },
-    /// The best answer improved: a nearer hit (`value` is `t`) or a nearer primitive
-    /// (`value` is the distance; for k nearest, the k-th best distance).
+    /// The best answer improved: a nearer hit (`value` is its `t`) or, for nearest-neighbour
+    /// queries, a primitive entered the k nearest so far (`value` is its distance).
     NewBest {
         /// The primitive.
         prim: u32,

@@ -26,7 +26,7 @@ pub struct Stats {
     /// primitives).
     pub memory_bytes: usize,
     /// The surface area heuristic cost with traversal and intersection costs 1, normalised by
-    /// the root's area (MacDonald and Booth, 1990): `Σ_inner A(n)/A(root) + Σ_leaf
+    /// the root's area (`MacDonald` and Booth, 1990): `Σ_inner A(n)/A(root) + Σ_leaf
     /// |n| A(n)/A(root)`, with `A` the perimeter in 2D. `None` where it does not apply.
     pub sah_cost: Option<f32>,
 }
