@@ -20,17 +20,29 @@ impl Observer<Vec3> for Counter {
     }
 }
 
-fn bench_structure<S: SpatialIndex<Prim = Triangle3>>(c: &mut Criterion, name: &str, tris: &[Triangle3]) {
+fn bench_structure<S: SpatialIndex<Prim = Triangle3>>(
+    c: &mut Criterion,
+    name: &str,
+    tris: &[Triangle3],
+) {
     let structure = S::build(tris);
     let rays = camera_rays(Vec3::new(0.0, -4.0, 2.0), Vec3::ZERO, 64, 48);
     let mut group = c.benchmark_group(format!("observer/{name}"));
     group.bench_function("plain", |b| {
-        b.iter(|| rays.iter().filter_map(|r| structure.ray_first_hit(black_box(r), f32::INFINITY)).count());
+        b.iter(|| {
+            rays.iter()
+                .filter_map(|r| structure.ray_first_hit(black_box(r), f32::INFINITY))
+                .count()
+        });
     });
     group.bench_function("no-op observer", |b| {
         b.iter(|| {
             rays.iter()
-                .filter_map(|r| structure.ray_first_hit_observed(black_box(r), f32::INFINITY, &mut ()).answer)
+                .filter_map(|r| {
+                    structure
+                        .ray_first_hit_observed(black_box(r), f32::INFINITY, &mut ())
+                        .answer
+                })
                 .count()
         });
     });
@@ -39,7 +51,11 @@ fn bench_structure<S: SpatialIndex<Prim = Triangle3>>(c: &mut Criterion, name: &
             let mut counter = Counter(0);
             let hits = rays
                 .iter()
-                .filter_map(|r| structure.ray_first_hit_observed(black_box(r), f32::INFINITY, &mut counter).answer)
+                .filter_map(|r| {
+                    structure
+                        .ray_first_hit_observed(black_box(r), f32::INFINITY, &mut counter)
+                        .answer
+                })
                 .count();
             (hits, counter.0)
         });
@@ -49,7 +65,13 @@ fn bench_structure<S: SpatialIndex<Prim = Triangle3>>(c: &mut Criterion, name: &
 
 fn observer(c: &mut Criterion) {
     let tris = torus_with(20_000);
-    bench_structure::<bvhlab::structure::BruteForce<Triangle3>>(c, "brute force (2k tris)", &tris[..2_000]);
+    bench_structure::<bvhlab::structure::BruteForce<Triangle3>>(
+        c,
+        "brute force (2k tris)",
+        &tris[..2_000],
+    );
+    bench_structure::<bvhlab::KdTree3>(c, "kd-tree (20k tris)", &tris);
+    bench_structure::<bvhlab::Grid3>(c, "grid (20k tris)", &tris);
 }
 
 criterion_group!(benches, observer);

@@ -17,7 +17,12 @@ pub fn torus(major: f32, minor: f32, rings: usize, sides: usize) -> Vec<Triangle
     let mut tris = Vec::with_capacity(2 * rings * sides);
     for i in 0..rings {
         for j in 0..sides {
-            let (a, b, c, d) = (vertex(i, j), vertex(i + 1, j), vertex(i + 1, j + 1), vertex(i, j + 1));
+            let (a, b, c, d) = (
+                vertex(i, j),
+                vertex(i + 1, j),
+                vertex(i + 1, j + 1),
+                vertex(i, j + 1),
+            );
             tris.push(Triangle3::new(a, b, c));
             tris.push(Triangle3::new(a, c, d));
         }
@@ -73,6 +78,8 @@ pub fn camera_rays(eye: Vec3, target: Vec3, width: usize, height: usize) -> Vec<
 
 /// `../shared/data/meshes/NAME` beside the repository, if present.
 pub fn shared_mesh(name: &str) -> Option<PathBuf> {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data/meshes").join(name);
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../../shared/data/meshes")
+        .join(name);
     path.is_file().then_some(path)
 }
