@@ -1,0 +1,164 @@
+//! The binned surface area heuristic (`MacDonald` and Booth, "Heuristics for ray tracing using
+//! space subdivision", 1990; binning after Wald, "On fast Construction of SAH-based Bounding
+//! Volume Hierarchies", 2007, and pbrt-v4 §7.3.2).
+//!
+//! The centres' box is cut into equal bins along each axis; each primitive falls into the
+//! bin of its centre, and each bin keeps the box and count of its primitives. Every boundary
+//! between bins is a candidate plane, costed as `C_trav + Σ A(child)/A(node) N(child)` with
+//! `C_trav = C_isect = 1`: the probability that a ray through the node also passes through a
+//! child is the ratio of their surface areas (perimeters in 2D). Two sweeps over the bins
+//! cost every plane in `O(bins)`, so a node costs `O(n + bins)` per axis.
+//!
+//! Areas are summed in `f64`: with coordinates near 1e20 a surface area overflows `f32`.
+
+use super::build::BuildPrim;
+use crate::Vector;
+use crate::volume::{Aabb, BoundingVolume};
+
+/// The most bins per axis ([`BvhOptions::bins`](super::BvhOptions::bins) is clamped to it).
+pub(super) const MAX_BINS: usize = 64;
+
+/// The cheapest plane of the best axis; its cost curve is in the [`SahScratch`].
+#[derive(Clone, Copy, Debug)]
+pub(super) struct SahCurve {
+    /// The axis whose cheapest plane is cheapest overall.
+    pub axis: usize,
+    /// The bin count.
+    pub bins: usize,
+    /// Where the bins start on `axis`.
+    pub lo: f32,
+    /// Bins per unit length.
+    pub scale: f32,
+    /// The cheapest plane (the boundary after this bin).
+    pub best: usize,
+    /// Its cost.
+    pub best_cost: f32,
+    /// Primitives on its low side.
+    pub left: usize,
+}
+
+impl SahCurve {
+    /// The position of the plane after bin `i`.
+    #[inline]
+    pub fn plane(&self, i: usize) -> f32 {
+        self.lo + (i + 1) as f32 / self.scale
+    }
+
+    /// The bin of a centre coordinate; NaN and out-of-range values are clamped into range.
+    #[inline]
+    pub fn bin_of(&self, coord: f32) -> usize {
+        (((coord - self.lo) * self.scale) as usize).min(self.bins - 1)
+    }
+}
+
+/// The buffers of the binning, kept by the builder and reused for every node, so that a
+/// node costs `O(n + bins)` and not a fresh `MAX_BINS`-sized array per axis.
+#[derive(Clone, Debug, Default)]
+pub(super) struct SahScratch<V: Vector> {
+    /// Per axis, per bin: the box and count of its primitives.
+    bins: Vec<(Aabb<V>, usize)>,
+    /// Per plane: the area and count of everything above it.
+    above: Vec<(f64, usize)>,
+    /// Per axis, per plane: the cost (`+inf` where a side is empty), `bins - 1` per axis.
+    costs: Vec<f32>,
+}
+
+impl<V: Vector> SahScratch<V> {
+    /// The cost of each plane of the curve's axis.
+    pub fn costs(&self, curve: &SahCurve) -> &[f32] {
+        let per_axis = curve.bins - 1;
+        &self.costs[curve.axis * per_axis..(curve.axis + 1) * per_axis]
+    }
+}
+
+/// Half the surface area (3D) or half the perimeter (2D) of a box, in `f64`. Only called on
+/// boxes that hold a primitive (never the empty box).
+fn half_area<V: Vector>(b: &Aabb<V>) -> f64 {
+    let s = (b.max - b.min).to_dvec3();
+    if V::DIM == 2 {
+        s.x + s.y
+    } else {
+        s.x * s.y + s.y * s.z + s.z * s.x
+    }
+}
+
+/// Bins the primitives along every axis with a non-zero, finite extent of the centres' box
+/// and returns the cheapest axis's plane (its curve stays in `scratch`). `None` when no axis
+/// can be binned (the centres coincide) or the node's area is zero or infinite (the
+/// heuristic says nothing then).
+pub(super) fn binned_sah<V: Vector>(
+    items: &[BuildPrim<V>],
+    bounds: &Aabb<V>,
+    centroids: &Aabb<V>,
+    bins: usize,
+    scratch: &mut SahScratch<V>,
+) -> Option<SahCurve> {
+    let node_area = half_area(bounds);
+    if !(node_area > 0.0 && node_area.is_finite()) {
+        return None;
+    }
+    let bins = bins.clamp(2, MAX_BINS);
+    // One curve per axis that can be binned (a non-zero, finite extent of the centres).
+    let curves: [Option<SahCurve>; 3] = std::array::from_fn(|axis| {
+        let lo = centroids.min.coord(axis.min(V::DIM - 1));
+        let extent = centroids.max.coord(axis.min(V::DIM - 1)) - lo;
+        (axis < V::DIM && extent > 0.0 && extent.is_finite()).then_some(SahCurve {
+            axis,
+            bins,
+            lo,
+            scale: bins as f32 / extent,
+            best: 0,
+            best_cost: f32::INFINITY,
+            left: 0,
+        })
+    });
+    // Fill the bins of every axis in one pass over the primitives.
+    scratch.bins.clear();
+    scratch.bins.resize(V::DIM * bins, (Aabb::EMPTY, 0));
+    for item in items {
+        for curve in curves.iter().flatten() {
+            let axis = curve.axis;
+            let bin = &mut scratch.bins[axis * bins + curve.bin_of(item.centroid.coord(axis))];
+            bin.0 = bin.0.merge(&item.bounds);
+            bin.1 += 1;
+        }
+    }
+    scratch.costs.clear();
+    scratch.costs.resize(V::DIM * (bins - 1), f32::INFINITY);
+    let mut best: Option<SahCurve> = None;
+    for mut curve in curves.into_iter().flatten() {
+        let axis = curve.axis;
+        let axis_bins = &scratch.bins[axis * bins..(axis + 1) * bins];
+        // Sweep from the right: the area and count above each plane.
+        scratch.above.clear();
+        scratch.above.resize(bins - 1, (0.0, 0));
+        let (mut acc, mut n) = (Aabb::<V>::EMPTY, 0);
+        for i in (1..bins).rev() {
+            acc = acc.merge(&axis_bins[i].0);
+            n += axis_bins[i].1;
+            scratch.above[i - 1] = (half_area(&acc), n);
+        }
+        // Sweep from the left, costing each plane.
+        let costs = &mut scratch.costs[axis * (bins - 1)..(axis + 1) * (bins - 1)];
+        let (mut acc, mut n) = (Aabb::<V>::EMPTY, 0);
+        for i in 0..bins - 1 {
+            acc = acc.merge(&axis_bins[i].0);
+            n += axis_bins[i].1;
+            let (area_above, n_above) = scratch.above[i];
+            if n == 0 || n_above == 0 {
+                continue;
+            }
+            let cost = 1.0 + (half_area(&acc) * n as f64 + area_above * n_above as f64) / node_area;
+            costs[i] = cost as f32;
+            if costs[i] < curve.best_cost {
+                curve.best = i;
+                curve.best_cost = costs[i];
+                curve.left = n;
+            }
+        }
+        if best.is_none_or(|b| curve.best_cost < b.best_cost) {
+            best = Some(curve);
+        }
+    }
+    best.filter(|curve| curve.best_cost.is_finite())
+}
