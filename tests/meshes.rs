@@ -77,8 +77,11 @@ macro_rules! on_meshes {
 
 on_meshes! {
     brute_force: BruteForce<Triangle3>,
-    kd_tree: bvhlab::KdTree3,
-    bsp_tree: bvhlab::Bsp3,
-    grid: bvhlab::Grid3,
-    octree: bvhlab::Octree3,
+    aabb_tree: AabbTree3,
+    sphere_tree: SphereTree3,
+    obb_tree: ObbTree3,
+    kd_tree: KdTree3,
+    bsp_tree: Bsp3,
+    grid: Grid3,
+    octree: Octree3,
 }

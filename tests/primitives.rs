@@ -199,7 +199,7 @@ fn rays_through_shared_edges_and_vertices_of_a_closed_mesh_never_slip_through() 
     assert!(aimed > 2000, "only {aimed} rays aimed");
 }
 
-/// The 2D analogue: a closed polygon, rays aimed at its exact vertices.
+/// The 2D analogue: a closed polygon, rays aimed at its exact vertices, off tangency.
 #[test]
 fn rays_through_shared_end_points_of_a_closed_polygon_never_slip_through() {
     let n = 97;
@@ -214,6 +214,16 @@ fn rays_through_shared_end_points_of_a_closed_polygon_never_slip_through() {
     for i in 0..n {
         for _ in 0..20 {
             let origin = random_vector::<Vec2>(&mut rng, 1.0).normalize_or(Vec2::X) * 5.0;
+            // Off tangency: a tangent ray's rounded direction may pass a hair beside the
+            // vertex, and then it truly misses (as in the 3D test).
+            if (vertex(i) - origin)
+                .normalize()
+                .dot(vertex(i).normalize())
+                .abs()
+                < 0.2
+            {
+                continue;
+            }
             let ray = Ray2::new(origin, vertex(i) - origin).expect("origin off the polygon");
             let hit = polygon
                 .iter()

@@ -3,6 +3,7 @@
 
 use bvhlab::glam::{Vec2, Vec3};
 use bvhlab::structure::BruteForce;
+use bvhlab::structure::bvh::{AabbTree, ObbTree, SphereTree};
 use bvhlab::{BspTree, Grid, KdTree, Orthtree};
 use bvhlab::{Segment2, SpatialIndex, Triangle3};
 use bvhlab_tests::conformance::{Budget, check_against_brute_force};
@@ -58,6 +59,9 @@ macro_rules! conformance {
 
 // The reference against itself: checks the harness (queries, scenes, comparisons) runs.
 conformance!(brute_force, BruteForce);
+conformance!(aabb_tree, AabbTree);
+conformance!(sphere_tree, SphereTree);
+conformance!(obb_tree, ObbTree);
 conformance!(kd_tree, KdTree);
 conformance!(bsp_tree, BspTree);
 conformance!(grid, Grid);

@@ -35,9 +35,12 @@ fn bench_ogre<S: SpatialIndex<Prim = Triangle3>>(
     group.finish();
 }
 
-/// Runs `$body` for every structure, with `S` bound to its type and `name` to its label.
+/// Calls `$f::<S>(c, label, args..)` for every 3D structure.
 macro_rules! for_each_structure {
     ($f:ident, $c:expr $(, $arg:expr)*) => {
+        $f::<bvhlab::AabbTree3>($c, "AABB tree SAH" $(, $arg)*);
+        $f::<bvhlab::SphereTree3>($c, "sphere tree SAH" $(, $arg)*);
+        $f::<bvhlab::ObbTree3>($c, "OBB tree SAH" $(, $arg)*);
         $f::<bvhlab::KdTree3>($c, "kd-tree SAH" $(, $arg)*);
         $f::<bvhlab::Grid3>($c, "grid" $(, $arg)*);
         $f::<bvhlab::Octree3>($c, "octree" $(, $arg)*);

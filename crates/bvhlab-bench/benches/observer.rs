@@ -70,6 +70,7 @@ fn observer(c: &mut Criterion) {
         "brute force (2k tris)",
         &tris[..2_000],
     );
+    bench_structure::<bvhlab::AabbTree3>(c, "AABB tree (20k tris)", &tris);
     bench_structure::<bvhlab::KdTree3>(c, "kd-tree (20k tris)", &tris);
     bench_structure::<bvhlab::Grid3>(c, "grid (20k tris)", &tris);
 }

@@ -43,8 +43,8 @@ pub use mesh::{Mesh, MeshError, MeshStats};
 pub use primitive::{Primitive, Segment2, Triangle3};
 pub use ray::Ray;
 pub use structure::{
-    BruteForce, BspTree, Event, Grid, Hit, KdTree, Nearest, NodeId, Observer, Orthtree, QueryCost,
-    RangeShape, Recorder, SpatialIndex, Stats, Traced,
+    BruteForce, BspTree, Bvh, Event, Grid, Hit, KdTree, Nearest, NodeId, Observer, Orthtree,
+    QueryCost, RangeShape, Recorder, SpatialIndex, Stats, Traced,
 };
 pub use vector::Vector;
 pub use volume::{
@@ -80,6 +80,18 @@ pub type ConvexHull3 = ConvexHull<Vec3>;
 #[doc = include_str!("../../../README.md")]
 pub struct ReadmeDoctests;
 
+/// A bounding volume hierarchy with boxes as node volumes, over 2D segments.
+pub type AabbTree2 = Bvh<Aabb2, Segment2>;
+/// A bounding volume hierarchy with boxes as node volumes, over triangles.
+pub type AabbTree3 = Bvh<Aabb3, Triangle3>;
+/// A bounding volume hierarchy with circles as node volumes, over 2D segments.
+pub type SphereTree2 = Bvh<Sphere2, Segment2>;
+/// A bounding volume hierarchy with spheres as node volumes, over triangles.
+pub type SphereTree3 = Bvh<Sphere3, Triangle3>;
+/// A bounding volume hierarchy with oriented boxes as node volumes, over 2D segments.
+pub type ObbTree2 = Bvh<Obb2, Segment2>;
+/// A bounding volume hierarchy with oriented boxes as node volumes, over triangles.
+pub type ObbTree3 = Bvh<Obb3, Triangle3>;
 /// A k-d tree over 2D segments.
 pub type KdTree2 = KdTree<Segment2>;
 /// A k-d tree over triangles.
@@ -104,7 +116,8 @@ pub mod prelude {
     pub use crate::vector::Vector;
     pub use crate::volume::BoundingVolume;
     pub use crate::{
-        Aabb2, Aabb3, ConvexHull2, ConvexHull3, GeometryError, Mesh, Obb2, Obb3, Ray2, Ray3,
-        Segment2, Sphere2, Sphere3, Triangle3,
+        Aabb2, Aabb3, AabbTree2, AabbTree3, Bsp2, Bsp3, ConvexHull2, ConvexHull3, GeometryError,
+        Grid2, Grid3, KdTree2, KdTree3, Mesh, Obb2, Obb3, ObbTree2, ObbTree3, Octree3, Quadtree2,
+        Ray2, Ray3, Segment2, Sphere2, Sphere3, SphereTree2, SphereTree3, Triangle3,
     };
 }

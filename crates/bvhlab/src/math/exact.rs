@@ -62,7 +62,7 @@ mod tests {
         let (p, e) = two_product(1.0 + f64::EPSILON, 1.0 - f64::EPSILON);
         assert_eq!(
             sign_of_sum([p, e, -1.0]),
-            -1.0 * f64::EPSILON * f64::EPSILON
+            -(f64::EPSILON * f64::EPSILON)
         );
     }
 }

@@ -1,6 +1,6 @@
 //! Line segments in 2D: ray-segment intersection and the closest point on a segment.
 
-use glam::{DVec2, Vec2};
+use glam::Vec2;
 
 use super::Primitive;
 use crate::Ray2;
@@ -19,13 +19,6 @@ pub struct Segment2 {
     pub b: Vec2,
 }
 
-/// `u × v` (the z component of the 3D cross product), in `f64` so that the product of two
-/// `f32` values is exact.
-fn cross(u: Vec2, v: Vec2) -> f64 {
-    let (u, v) = (u.as_dvec2(), v.as_dvec2());
-    u.perp_dot(v)
-}
-
 impl Segment2 {
     /// The segment from `a` to `b`.
     pub const fn new(a: Vec2, b: Vec2) -> Self {
@@ -42,23 +35,32 @@ impl Segment2 {
     /// `None` for a ray whose coordinates are not all finite. Segment/line intersection as in
     /// Ericson, "Real-Time Collision Detection", §5.1.9.
     pub fn ray_hit(&self, ray: &Ray2) -> Option<f32> {
-        let (o, d) = (ray.origin(), ray.dir());
-        let (pa, pb) = (self.a - o, self.b - o);
-        let (side_a, side_b) = (cross(d, pa), cross(d, pb));
+        let (o, d) = (ray.origin().as_dvec2(), ray.dir().as_dvec2());
+        // End points relative to the origin in f64: exact for f32 inputs of similar
+        // magnitude, and, what watertightness needs, a function of that end point alone.
+        let (pa, pb) = (self.a.as_dvec2() - o, self.b.as_dvec2() - o);
+        let (side_a, side_b) = (d.perp_dot(pa), d.perp_dot(pb));
         if (side_a > 0.0 && side_b > 0.0) || (side_a < 0.0 && side_b < 0.0) {
             return None;
         }
-        let dd = d.as_dvec2();
-        if side_a == 0.0 && side_b == 0.0 {
-            // The segment lies on the ray's line: the ray enters it at its nearer end.
-            let len2 = dd.length_squared();
-            let (ta, tb) = (dd.dot(pa.as_dvec2()) / len2, dd.dot(pb.as_dvec2()) / len2);
+        let len2 = d.length_squared();
+        // Where the ray passes each end point's projection: the hit lies between them.
+        let (ta, tb) = (d.dot(pa) / len2, d.dot(pb) / len2);
+        let t = if side_a == 0.0 && side_b == 0.0 {
+            // Both on the ray's line (both zero): the ray enters at the nearer end, or at t = 0
+            // when it starts on the segment.
             let (near, far) = (ta.min(tb), ta.max(tb));
-            return (far >= 0.0).then(|| near.max(0.0) as f32);
-        }
-        // e × (a - o) / (e × d) with e = b - a, and e × d = side_b - side_a ≠ 0 here.
-        let e: DVec2 = (self.b - self.a).as_dvec2();
-        let t = e.perp_dot(pa.as_dvec2()) / e.perp_dot(dd);
+            if far < 0.0 {
+                return None;
+            }
+            near.max(0.0)
+        } else {
+            // The crossing divides the segment in the ratio of the end points' distances to
+            // the ray's line; t is the same convex combination of ta and tb, so it stays on the
+            // segment even for grazing rays far from the origin.
+            let s = side_a / (side_a - side_b);
+            ta + (tb - ta) * s
+        };
         (t >= 0.0 && t.is_finite()).then_some(t as f32)
     }
 

@@ -82,7 +82,7 @@ impl Triangle3 {
             return None;
         }
         let det = u + v + w;
-        if det == 0.0 {
+        if det == 0.0 || self.is_degenerate() {
             return None;
         }
         let t_scaled = u * f64::from(a.z) + v * f64::from(b.z) + w * f64::from(c.z);
@@ -162,6 +162,15 @@ impl Triangle3 {
         .into_iter()
         .min_by(|x, y| x.distance_squared(p).total_cmp(&y.distance_squared(p)))
         .map_or(self.a, DVec3::as_vec3)
+    }
+
+    /// Whether the corners are collinear (zero area), decided on the `f64` cross product of
+    /// the edges. Rounding in the ray's sheared frame can make such a triangle look thin but
+    /// not flat; it has no interior to hit, so the ray test asks this first.
+    #[inline]
+    pub fn is_degenerate(&self) -> bool {
+        let (a, b, c) = (self.a.as_dvec3(), self.b.as_dvec3(), self.c.as_dvec3());
+        (b - a).cross(c - a) == DVec3::ZERO
     }
 
     /// The area.

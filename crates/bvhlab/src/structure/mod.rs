@@ -19,6 +19,7 @@ pub mod stats;
 
 pub use brute_force::BruteForce;
 pub use bsp::{BspOptions, BspTree};
+pub use bvh::{Bvh, BvhOptions, SplitMethod};
 pub use grid::{Grid, GridOptions};
 pub use kdtree::{KdTree, KdTreeOptions};
 pub use mailbox::Mailbox;

@@ -63,6 +63,7 @@ pub enum RangeShape<V: Vector> {
 
 impl<V: Vector> RangeShape<V> {
     /// Whether the region and a closed box share a point (used to prune nodes and cells).
+    #[inline]
     pub fn overlaps_aabb(&self, aabb: &Aabb<V>) -> bool {
         match self {
             RangeShape::Box(b) => b.overlaps(aabb),
@@ -71,6 +72,7 @@ impl<V: Vector> RangeShape<V> {
     }
 
     /// Whether the region and a primitive share a point (exact).
+    #[inline]
     pub fn overlaps_primitive<P: Primitive<Point = V>>(&self, prim: &P) -> bool {
         match self {
             RangeShape::Box(b) => prim.intersects_aabb(b),
@@ -79,6 +81,7 @@ impl<V: Vector> RangeShape<V> {
     }
 
     /// The box around the region.
+    #[inline]
     pub fn bounds(&self) -> Aabb<V> {
         match self {
             RangeShape::Box(b) => *b,
@@ -97,17 +100,20 @@ pub struct HitTracker {
 
 impl HitTracker {
     /// No hit yet; hits beyond `t_max` (or any hit, for a NaN `t_max`) are refused.
+    #[inline]
     pub fn new(t_max: f32) -> Self {
         Self { best: None, t_max }
     }
 
     /// The current limit: the best `t` so far, or `t_max`. Nodes the ray enters after this can
     /// be skipped.
+    #[inline]
     pub fn limit(&self) -> f32 {
         self.best.map_or(self.t_max, |h| h.t)
     }
 
     /// Offers a hit; returns whether it became the best.
+    #[inline]
     pub fn offer(&mut self, prim: usize, t: f32) -> bool {
         let better = match self.best {
             None => t <= self.t_max,
@@ -121,6 +127,7 @@ impl HitTracker {
     }
 
     /// The best hit, if any.
+    #[inline]
     pub fn best(&self) -> Option<Hit> {
         self.best
     }
@@ -135,6 +142,7 @@ pub struct NearestSet<V: Vector> {
 
 impl<V: Vector> NearestSet<V> {
     /// An empty set that keeps at most `k` entries.
+    #[inline]
     pub fn new(k: usize) -> Self {
         Self {
             k,
@@ -145,6 +153,7 @@ impl<V: Vector> NearestSet<V> {
     /// The pruning bound: the k-th best distance so far, or `+inf` while fewer than `k` are
     /// known. A node whose bound is farther than this cannot contribute. (With `k = 0`
     /// nothing can, so the bound is `-inf`.)
+    #[inline]
     pub fn bound(&self) -> f32 {
         if self.k == 0 {
             f32::NEG_INFINITY
@@ -157,6 +166,7 @@ impl<V: Vector> NearestSet<V> {
 
     /// Offers a primitive's nearest point; returns whether it entered the set. A primitive
     /// already in the set (offered again from another cell) is ignored.
+    #[inline]
     pub fn offer(&mut self, prim: usize, point: V, distance: f32) -> bool {
         let key = |n: &Nearest<V>| (n.distance, n.prim);
         if self.k == 0
@@ -180,6 +190,7 @@ impl<V: Vector> NearestSet<V> {
     }
 
     /// The entries, nearest first.
+    #[inline]
     pub fn into_vec(self) -> Vec<Nearest<V>> {
         self.items
     }

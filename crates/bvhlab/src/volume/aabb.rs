@@ -35,17 +35,20 @@ pub struct SlabTest<V: Vector> {
 
 impl<V: Vector> SlabTest<V> {
     /// `max_i t_near[i]`: the last slab entry.
+    #[inline]
     pub fn t_enter(&self) -> f32 {
         self.t_near.max_element()
     }
 
     /// `min_i t_far[i]`: the first slab exit.
+    #[inline]
     pub fn t_exit(&self) -> f32 {
         self.t_far.min_element()
     }
 
     /// The lecture's test: the ray misses when `max(t_near) > min(t_far)`, or when the whole
     /// overlap lies behind the origin. Otherwise the interval, clamped to `t >= 0`.
+    #[inline]
     pub fn interval(&self) -> Option<(f32, f32)> {
         let enter = self.t_enter().max(0.0);
         let exit = self.t_exit();
@@ -68,6 +71,7 @@ impl<V: Vector> Aabb<V> {
     /// The lecture's fit: `x_min = min_i v_x^i`, `x_max = max_i v_x^i`, and likewise for `y`
     /// (and `z`). Points with NaN or infinite coordinates are skipped; no points give
     /// [`Aabb::EMPTY`]. Use [`Aabb::try_from_points`] to be told about such input instead.
+    #[inline]
     pub fn from_points(points: &[V]) -> Self {
         finite_points(points)
             .iter()
@@ -78,22 +82,26 @@ impl<V: Vector> Aabb<V> {
     ///
     /// # Errors
     /// [`GeometryError::Empty`] or [`GeometryError::NonFinite`] (naming the point).
+    #[inline]
     pub fn try_from_points(points: &[V]) -> Result<Self, GeometryError> {
         checked_points(points).map(Self::from_points)
     }
 
     /// The box grown to contain `p`.
     #[must_use]
+    #[inline]
     pub fn grown(&self, p: V) -> Self {
         Self::new(self.min.min(p), self.max.max(p))
     }
 
     /// The centre `(min + max) / 2`.
+    #[inline]
     pub fn center(&self) -> V {
         (self.min + self.max) * 0.5
     }
 
     /// The side lengths `max - min` (zero for an empty box).
+    #[inline]
     pub fn size(&self) -> V {
         if self.is_empty() {
             V::ZERO
@@ -103,6 +111,7 @@ impl<V: Vector> Aabb<V> {
     }
 
     /// The axis along which the box is longest (the lecture's split axis).
+    #[inline]
     pub fn longest_axis(&self) -> usize {
         let size = self.size();
         (0..V::DIM)
@@ -111,6 +120,7 @@ impl<V: Vector> Aabb<V> {
     }
 
     /// The corners, `2^DIM` of them, in binary order (bit `i` set: `max` on axis `i`).
+    #[inline]
     pub fn corners(&self) -> impl Iterator<Item = V> + '_ {
         (0..1usize << V::DIM).map(move |bits| {
             let mut corner = self.min;
@@ -122,6 +132,7 @@ impl<V: Vector> Aabb<V> {
     }
 
     /// The slab test, axis by axis, for drawing and stepping; see [`SlabTest`].
+    #[inline]
     pub fn slab_test(&self, ray: &Ray<V>) -> SlabTest<V> {
         let (origin, inv_dir, dir) = (ray.origin(), ray.inv_dir(), ray.dir());
         let mut t_near = V::ZERO;
@@ -155,19 +166,23 @@ impl<V: Vector> Default for Aabb<V> {
 impl<V: Vector> BoundingVolume for Aabb<V> {
     type Point = V;
 
+    #[inline]
     fn ray_interval(&self, ray: &Ray<V>) -> Option<(f32, f32)> {
         self.slab_test(ray).interval()
     }
 
+    #[inline]
     fn closest_point(&self, point: V) -> Option<V> {
         (!self.is_empty()).then(|| point.max(self.min).min(self.max))
     }
 
+    #[inline]
     fn contains(&self, point: V) -> bool {
         (0..V::DIM)
             .all(|i| self.min.coord(i) <= point.coord(i) && point.coord(i) <= self.max.coord(i))
     }
 
+    #[inline]
     fn overlaps(&self, other: &Self) -> bool {
         (0..V::DIM).all(|i| {
             self.min.coord(i) <= other.max.coord(i) && other.min.coord(i) <= self.max.coord(i)
@@ -175,22 +190,27 @@ impl<V: Vector> BoundingVolume for Aabb<V> {
             && !other.is_empty()
     }
 
+    #[inline]
     fn merge(&self, other: &Self) -> Self {
         Self::new(self.min.min(other.min), self.max.max(other.max))
     }
 
+    #[inline]
     fn measure(&self) -> f32 {
         V::box_measure(self.size())
     }
 
+    #[inline]
     fn boundary_measure(&self) -> f32 {
         V::box_boundary_measure(self.size())
     }
 
+    #[inline]
     fn is_empty(&self) -> bool {
         (0..V::DIM).any(|i| self.min.coord(i) > self.max.coord(i))
     }
 
+    #[inline]
     fn aabb(&self) -> Self {
         *self
     }
