@@ -60,9 +60,6 @@ mod tests {
         assert!(sign_of_sum([1.0e30, 1.0e-30, -1.0e30]) > 0.0);
         assert_eq!(exact_sum([0.5, 0.25]), vec![0.75]);
         let (p, e) = two_product(1.0 + f64::EPSILON, 1.0 - f64::EPSILON);
-        assert_eq!(
-            sign_of_sum([p, e, -1.0]),
-            -(f64::EPSILON * f64::EPSILON)
-        );
+        assert_eq!(sign_of_sum([p, e, -1.0]), -(f64::EPSILON * f64::EPSILON));
     }
 }
