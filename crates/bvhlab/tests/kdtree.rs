@@ -332,29 +332,3 @@ proptest! {
         let _ = tree.k_nearest(o.truncate(), 3);
     }
 }
-
-/// Build times of the real meshes; run with `cargo test --release -- --ignored --nocapture`.
-#[test]
-#[ignore = "a timing run, for release builds"]
-fn mesh_build_times() {
-    for name in ["stanford-bunny.obj", "dragon.obj", "ogre.obj"] {
-        let Some(mesh) = load_mesh(name) else {
-            continue;
-        };
-        for (builder, options) in all_options() {
-            let start = std::time::Instant::now();
-            let tree = KdTree::with_options(&mesh, &options);
-            let elapsed = start.elapsed();
-            let stats = tree.stats();
-            eprintln!(
-                "{name} ({} triangles), {builder}: {elapsed:?}, {} nodes, {} references, \
-                 depth {}, SAH {:?}",
-                mesh.len(),
-                stats.nodes,
-                stats.references,
-                stats.max_depth,
-                stats.sah_cost
-            );
-        }
-    }
-}
