@@ -113,21 +113,25 @@ pub trait SpatialIndex {
     fn validate(&self) -> Result<(), ValidationError>;
 
     /// The first hit along the ray with `0 <= t <= t_max`.
+    #[inline]
     fn ray_first_hit(&self, ray: &Ray<PointOf<Self>>, t_max: f32) -> Option<Hit> {
         self.ray_first_hit_observed(ray, t_max, &mut ()).answer
     }
 
     /// Some hit with `0 <= t <= t_max` (occlusion).
+    #[inline]
     fn ray_any_hit(&self, ray: &Ray<PointOf<Self>>, t_max: f32) -> Option<Hit> {
         self.ray_any_hit_observed(ray, t_max, &mut ()).answer
     }
 
     /// Every hit with `0 <= t <= t_max`, sorted by `t`.
+    #[inline]
     fn ray_all_hits(&self, ray: &Ray<PointOf<Self>>, t_max: f32) -> Vec<Hit> {
         self.ray_all_hits_observed(ray, t_max, &mut ()).answer
     }
 
     /// The primitive nearest to `point`, its nearest point and the distance.
+    #[inline]
     fn closest_point(&self, point: PointOf<Self>) -> Option<Nearest<PointOf<Self>>> {
         self.k_nearest_observed(point, 1, &mut ())
             .answer
@@ -139,6 +143,7 @@ pub trait SpatialIndex {
     ///
     /// # Errors
     /// [`GeometryError::NonFinite`] when a coordinate of `point` is NaN or infinite.
+    #[inline]
     fn checked_closest_point(
         &self,
         point: PointOf<Self>,
@@ -147,16 +152,19 @@ pub trait SpatialIndex {
     }
 
     /// The `k` nearest primitives, nearest first.
+    #[inline]
     fn k_nearest(&self, point: PointOf<Self>, k: usize) -> Vec<Nearest<PointOf<Self>>> {
         self.k_nearest_observed(point, k, &mut ()).answer
     }
 
     /// The primitives that share a point with the region, ascending.
+    #[inline]
     fn range(&self, shape: &RangeShape<PointOf<Self>>) -> Vec<usize> {
         self.range_observed(shape, &mut ()).answer
     }
 
     /// Every overlapping pair between `self` and `other`, ascending.
+    #[inline]
     fn collide(&self, other: &Self) -> Vec<(usize, usize)> {
         self.collide_observed(other, &mut ()).answer
     }

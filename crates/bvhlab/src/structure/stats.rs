@@ -52,14 +52,17 @@ impl Stats {
 }
 
 /// The SAH cost of a tree from its nodes' bounding volumes: `(volume, leaf primitive count or
-/// None for an inner node)` per node, root first.
+/// None for an inner node)` per node, root first. `None` when the root's boundary measure is
+/// zero or not finite.
 pub fn sah_cost<B: BoundingVolume>(nodes: impl Iterator<Item = (B, Option<usize>)>) -> Option<f32> {
     let mut root_area = None;
     let mut cost = 0.0f64;
     for (volume, leaf) in nodes {
         let area = f64::from(volume.boundary_measure());
         let root = *root_area.get_or_insert(area);
-        if root <= 0.0 {
+        // A flat root has no area to normalise by; a root whose area overflowed f32 (scenes
+        // beyond ~1e19) has no meaningful ratio. Both: no SAH cost rather than inf or NaN.
+        if root <= 0.0 || !root.is_finite() || !area.is_finite() {
             return None;
         }
         cost += area / root * leaf.map_or(1.0, |n| n as f64);
