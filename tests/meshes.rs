@@ -10,11 +10,14 @@ use bvhlab_tests::scenes::Scene;
 use bvhlab_tests::{mesh_dir, rng};
 
 /// The meshes and how many queries each gets (brute force is the slow side).
-const MESHES: [(&str, usize, usize); 4] = [
+const MESHES: [(&str, usize, usize); 7] = [
     ("suzanne.obj", 150, 40),
+    ("spot.obj", 100, 25),
     ("fandisk.obj", 100, 25),
     ("teapot.obj", 100, 25),
     ("stanford-bunny.obj", 25, 8),
+    ("dragon.obj", 10, 3),
+    ("ogre.obj", 10, 3),
 ];
 
 fn load(name: &str) -> Option<Scene<Triangle3>> {
