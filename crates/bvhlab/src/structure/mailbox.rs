@@ -14,6 +14,9 @@ pub struct Mailbox {
 
 const EMPTY: u32 = u32::MAX;
 
+use super::{Event, Observer, PrimitiveResult};
+use crate::Vector;
+
 impl Mailbox {
     /// An empty mailbox.
     pub fn new() -> Self {
@@ -40,6 +43,20 @@ impl Mailbox {
                 _ => i = (i + 1) & mask,
             }
         }
+    }
+
+    /// [`first_visit`](Self::first_visit) that reports a repeat to the observer as
+    /// [`PrimitiveResult::AlreadyTested`]: the one place every mailboxing query does this.
+    #[inline]
+    pub fn admit<V: Vector, O: Observer<V>>(&mut self, prim: u32, observer: &mut O) -> bool {
+        let first = self.first_visit(prim as usize);
+        if !first {
+            observer.on(Event::PrimitiveTest {
+                prim,
+                result: PrimitiveResult::AlreadyTested,
+            });
+        }
+        first
     }
 
     fn grow(&mut self) {

@@ -148,11 +148,7 @@ fn test_leaf<P: Primitive, O: Observer<P::Point>>(
     observer: &mut O,
 ) {
     for &prim in list {
-        if !mailbox.first_visit(prim as usize) {
-            observer.on(Event::PrimitiveTest {
-                prim,
-                result: PrimitiveResult::AlreadyTested,
-            });
+        if !mailbox.admit(prim, observer) {
             continue;
         }
         cost.prim_tests += 1;

@@ -73,11 +73,7 @@ pub(crate) fn range<T: PlaneTree, O: Observer<PointOfTree<T>>>(
         match tree.node(node) {
             PlaneNode::Leaf(list) => {
                 for &prim in list {
-                    if !mailbox.first_visit(prim as usize) {
-                        observer.on(Event::PrimitiveTest {
-                            prim,
-                            result: PrimitiveResult::AlreadyTested,
-                        });
+                    if !mailbox.admit(prim, observer) {
                         continue;
                     }
                     cost.prim_tests += 1;

@@ -184,11 +184,7 @@ impl<'t, T: PlaneTree> RayWalk<'t, T> {
         mailbox: &mut Mailbox,
         observer: &mut O,
     ) -> Option<f32> {
-        if !mailbox.first_visit(prim as usize) {
-            observer.on(Event::PrimitiveTest {
-                prim,
-                result: PrimitiveResult::AlreadyTested,
-            });
+        if !mailbox.admit(prim, observer) {
             return None;
         }
         self.cost.prim_tests += 1;

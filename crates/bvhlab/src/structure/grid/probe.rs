@@ -89,11 +89,7 @@ impl<'a, P: Primitive> RayProbe<'a, P> {
     /// Tests primitive `i` unless this query already has (then reports `AlreadyTested`);
     /// returns its hit when it lies in `[0, t_max]`.
     pub(crate) fn test<O: Observer<P::Point>>(&mut self, i: u32, observer: &mut O) -> Option<f32> {
-        if !self.mailbox.first_visit(i as usize) {
-            observer.on(Event::PrimitiveTest {
-                prim: i,
-                result: PrimitiveResult::AlreadyTested,
-            });
+        if !self.mailbox.admit(i, observer) {
             return None;
         }
         self.cost.prim_tests += 1;
@@ -139,11 +135,7 @@ impl<'a, P: Primitive> NearestProbe<'a, P> {
     /// Measures primitive `i` unless this query already has (then reports `AlreadyTested`),
     /// with brute force's formula, and offers it to the k nearest.
     pub(crate) fn test<O: Observer<P::Point>>(&mut self, i: u32, observer: &mut O) {
-        if !self.mailbox.first_visit(i as usize) {
-            observer.on(Event::PrimitiveTest {
-                prim: i,
-                result: PrimitiveResult::AlreadyTested,
-            });
+        if !self.mailbox.admit(i, observer) {
             return;
         }
         self.cost.prim_tests += 1;

@@ -6,7 +6,7 @@ use super::layout::{Grid, cells_in};
 use super::probe::{PairCollector, prim_id, test_range};
 use super::tolerance::{is_prunable_range, range_box, range_may_touch};
 use crate::structure::{
-    Event, Mailbox, NodeId, Observer, PrimitiveResult, PruneReason, QueryCost, RangeShape, Traced,
+    Event, Mailbox, NodeId, Observer, PruneReason, QueryCost, RangeShape, Traced,
 };
 use crate::{BoundingVolume, Primitive};
 
@@ -59,14 +59,9 @@ impl<P: Primitive> Grid<P> {
                 cost.nodes_visited += 1;
                 observer.on(Event::EnterNode { node, depth: 0 });
                 for &i in self.cell_primitives(cell) {
-                    if mailbox.first_visit(i as usize) {
+                    if mailbox.admit(i, observer) {
                         let prim = (i, &self.prims[i as usize]);
                         test_range(prim, shape, &mut cost, &mut found, observer);
-                    } else {
-                        observer.on(Event::PrimitiveTest {
-                            prim: i,
-                            result: PrimitiveResult::AlreadyTested,
-                        });
                     }
                 }
             }

@@ -5,7 +5,7 @@ use super::layout::{Orthtree, child_box_at, child_count, split_point};
 use crate::structure::grid::probe::{PairCollector, prim_id, test_range};
 use crate::structure::grid::tolerance::{is_prunable_range, range_may_touch};
 use crate::structure::{
-    Event, Mailbox, NodeId, Observer, PrimitiveResult, PruneReason, QueryCost, RangeShape, Traced,
+    Event, Mailbox, NodeId, Observer, PruneReason, QueryCost, RangeShape, Traced,
 };
 use crate::volume::Aabb;
 use crate::{BoundingVolume, Primitive, Vector};
@@ -63,14 +63,9 @@ impl<P: Primitive> Orthtree<P> {
                 continue;
             }
             for &i in self.leaf_primitives(id) {
-                if mailbox.first_visit(i as usize) {
+                if mailbox.admit(i, observer) {
                     let prim = (i, &self.prims[i as usize]);
                     test_range(prim, shape, &mut cost, &mut found, observer);
-                } else {
-                    observer.on(Event::PrimitiveTest {
-                        prim: i,
-                        result: PrimitiveResult::AlreadyTested,
-                    });
                 }
             }
         }
