@@ -43,8 +43,9 @@ pub use mesh::{Mesh, MeshError, MeshStats};
 pub use primitive::{Primitive, Segment2, Triangle3};
 pub use ray::Ray;
 pub use structure::{
-    BruteForce, BspTree, Bvh, Event, Grid, Hit, KdTree, Nearest, NodeId, Observer, Orthtree,
-    QueryCost, RangeShape, Recorder, SpatialIndex, Stats, Traced,
+    BruteForce, BspTree, Bvh, Event, Grid, Hit, KdTree, Nearest, NodeId, NodeOutline, NodeShape,
+    Observer, Orthtree, Outline, QueryCost, RangeShape, Recorder, SpatialIndex, SplitPlane, Stats,
+    Traced,
 };
 pub use vector::Vector;
 pub use volume::{
@@ -112,7 +113,7 @@ pub type Octree3 = Orthtree<Triangle3>;
 /// The names most programs need: the query traits and the 2D/3D types.
 pub mod prelude {
     pub use crate::primitive::Primitive;
-    pub use crate::structure::SpatialIndex;
+    pub use crate::structure::{Outline, SpatialIndex};
     pub use crate::vector::Vector;
     pub use crate::volume::BoundingVolume;
     pub use crate::{

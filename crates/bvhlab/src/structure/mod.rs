@@ -14,6 +14,7 @@ pub mod kdtree;
 pub mod mailbox;
 pub mod observe;
 pub mod octree;
+pub mod outline;
 pub mod query;
 pub mod stats;
 
@@ -25,6 +26,7 @@ pub use kdtree::{KdTree, KdTreeOptions};
 pub use mailbox::Mailbox;
 pub use observe::{Event, NodeId, Observer, PrimitiveResult, PruneReason, Recorder};
 pub use octree::{Orthtree, OrthtreeOptions};
+pub use outline::{NodeOutline, NodeShape, Outline, SplitPlane};
 pub use query::{Hit, HitTracker, Nearest, NearestSet, QueryCost, RangeShape, Traced};
 pub use stats::{Stats, ValidationError};
 
