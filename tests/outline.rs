@@ -65,14 +65,14 @@ where
         let point = random_vector(&mut rng, 12.0);
         structure.k_nearest_observed(point, 2, &mut recorder);
         for event in recorder.events {
-            let node = match event {
-                Event::EnterNode { node, .. }
-                | Event::RayBoundTest { node, .. }
-                | Event::DistanceBoundTest { node, .. }
-                | Event::Prune { node, .. }
-                | Event::PlaneCrossed { node, .. }
-                | Event::CellEnter { cell: node, .. } => node,
-                _ => continue,
+            let (Event::EnterNode { node, .. }
+            | Event::RayBoundTest { node, .. }
+            | Event::DistanceBoundTest { node, .. }
+            | Event::Prune { node, .. }
+            | Event::PlaneCrossed { node, .. }
+            | Event::CellEnter { cell: node, .. }) = event
+            else {
+                continue;
             };
             assert!(
                 node.index() < outline.len(),
