@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# Builds the web page of the lab into dist/ at the repository root: the lab app
+# (crates/bvhlab-app) for wasm32-unknown-unknown, its JavaScript bindings from wasm-bindgen, and
+# index.html. Installs what it needs when it is missing (the wasm32 target, wasm-bindgen-cli of
+# exactly the version in Cargo.lock); those checks take a second when already done.
+#
+# No wasm-opt: Debian's binaryen (108) breaks wasm-bindgen's output (the browser fails with
+# "WebAssembly.Table.set(): Argument 1 is invalid for table") and npm's binaryen costs minutes
+# per release build; the page works without it (about 8 MB of wasm, under 3 MB gzipped).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+if ! rustup target list --installed | grep -qx wasm32-unknown-unknown; then
+  rustup target add wasm32-unknown-unknown
+fi
+
+# The wasm-bindgen CLI must be exactly the version of the wasm-bindgen crate the app links.
+version=$(awk '
+  /^\[\[package\]\]/ { in_wb = 0 }
+  /^name = "wasm-bindgen"$/ { in_wb = 1 }
+  in_wb && /^version = / { gsub(/"/, "", $3); print $3; exit }
+' Cargo.lock)
+if [ -z "$version" ]; then
+  echo "web/build.sh: no wasm-bindgen package in Cargo.lock" >&2
+  exit 1
+fi
+if [ "$(wasm-bindgen --version 2>/dev/null || true)" != "wasm-bindgen $version" ]; then
+  echo "Installing wasm-bindgen-cli $version (about 3 minutes)..."
+  # No --locked: the CLI's own lock file pins a crate version some registries lack.
+  cargo install wasm-bindgen-cli --version "$version"
+fi
+
+cargo build -p bvhlab-app --release --target wasm32-unknown-unknown
+wasm=target/wasm32-unknown-unknown/release/bvhlab-app.wasm
+
+rm -rf dist
+mkdir -p dist
+wasm-bindgen --target web --no-typescript --out-dir dist --out-name app "$wasm"
+cp index.html dist/
+
+echo "Built dist/ ($(du -sh dist | cut -f1)): index.html, app.js, app_bg.wasm"
