@@ -1,0 +1,381 @@
+// bvh-lab's browser end-to-end test: the built web page (dist/, served by web/server.mjs) in
+// Debian's headless Chromium, driven by playwright-core, once on WebGPU and once on WebGL2.
+//
+//   node tests/e2e/lab.test.mjs http://127.0.0.1:PORT/
+//
+// (tests/e2e/run.sh installs, builds, serves and runs this.) For each renderer it opens the page,
+// waits for the lab's JSON report (`#lab-status[data-report]`, see index.html) to say it is
+// ready on the expected renderer, checks that the first picture is not blank, drags a ray across
+// the drawing area with the mouse, and checks the report's answer (a hit, nodes visited, the same
+// answer as brute force) and that the ray changed the picture along the drag line. Any console
+// error, page error or request to another host fails the run. Screenshots go to target/e2e/.
+// It also prints the page's frame rate while dragging (software rendering: informative only).
+
+import { mkdirSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { dirname, join, relative, resolve } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { chromium } from 'playwright-core';
+import pngjs from 'pngjs';
+
+const { PNG } = pngjs;
+
+const url = process.argv[2] ?? process.env.LAB_URL;
+if (!url) {
+  console.error('usage: node tests/e2e/lab.test.mjs http://127.0.0.1:PORT/');
+  process.exit(2);
+}
+const origin = new URL(url).origin;
+const repo = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
+const outDir = join(repo, 'target', 'e2e');
+mkdirSync(outDir, { recursive: true });
+const executablePath = process.env.CHROMIUM ?? '/usr/bin/chromium';
+
+const READY_TIMEOUT_MS = 60_000;
+const QUERY_TIMEOUT_MS = 30_000;
+const VIEWPORT = { width: 1280, height: 800 };
+
+// Flags from shared/SETUP.md. The background-networking ones keep Chromium from calling home
+// (the network is closed); Playwright refuses --user-data-dir, hence launchPersistentContext.
+const BASE_ARGS = [
+  '--no-sandbox',
+  '--disable-quic',
+  '--no-first-run',
+  '--disable-background-networking',
+  '--disable-component-update',
+  '--disable-sync',
+];
+// WebGPU in headless Chromium without a GPU: SwiftShader's Vulkan under Dawn. With
+// --enable-unsafe-webgpu alone the adapter exists but nothing is drawn. --enable-features
+// replaces Playwright's own list, so its names are kept.
+const WEBGPU_ARGS = [
+  '--enable-unsafe-webgpu',
+  '--use-angle=swiftshader',
+  '--use-vulkan=swiftshader',
+  '--enable-features=Vulkan,CDPScreenshotNewSurface,SkipListAccountsWithoutGaiaCookies',
+];
+
+const RUNS = [
+  { renderer: 'WebGPU', args: [...BASE_ARGS, ...WEBGPU_ARGS] },
+  // Plain headless has no WebGPU adapter: the app falls back to WebGL2 by itself.
+  { renderer: 'WebGL2', args: BASE_ARGS },
+];
+
+class Failure extends Error {}
+
+function check(condition, message) {
+  if (!condition) throw new Failure(message);
+}
+
+const seconds = (ms) => `${(ms / 1000).toFixed(1)} s`;
+const show = (path) => relative(repo, path);
+
+function decode(buffer) {
+  return PNG.sync.read(buffer);
+}
+
+// The RGB colour at (x, y) of a decoded screenshot, as one number.
+function rgb(png, x, y) {
+  const i = (png.width * y + x) * 4;
+  return (png.data[i] << 16) | (png.data[i + 1] << 8) | png.data[i + 2];
+}
+
+// The integer pixel rectangle of the report's drawing area, clipped to the screenshot.
+function pixelRect(png, [x0, y0, x1, y1]) {
+  return {
+    x0: Math.max(0, Math.ceil(x0)),
+    y0: Math.max(0, Math.ceil(y0)),
+    x1: Math.min(png.width, Math.floor(x1)),
+    y1: Math.min(png.height, Math.floor(y1)),
+  };
+}
+
+// Distinct colours and the share of the most common one inside the drawing area.
+function colourStats(png, rect) {
+  const counts = new Map();
+  for (let y = rect.y0; y < rect.y1; y++) {
+    for (let x = rect.x0; x < rect.x1; x++) {
+      const c = rgb(png, x, y);
+      counts.set(c, (counts.get(c) ?? 0) + 1);
+    }
+  }
+  const total = (rect.x1 - rect.x0) * (rect.y1 - rect.y0);
+  const top = Math.max(...counts.values());
+  return { distinct: counts.size, dominantShare: top / total };
+}
+
+// How far two colours are apart (largest channel difference).
+function colourDistance(a, b) {
+  return Math.max(
+    Math.abs(((a >> 16) & 255) - ((b >> 16) & 255)),
+    Math.abs(((a >> 8) & 255) - ((b >> 8) & 255)),
+    Math.abs((a & 255) - (b & 255)),
+  );
+}
+
+// Samples the segment from `a` to `b` every 3 pixels; a sample counts as changed when some pixel
+// within 2 pixels of it differs clearly between the two screenshots.
+function changesAlong(before, after, a, b) {
+  const length = Math.hypot(b.x - a.x, b.y - a.y);
+  const samples = Math.max(1, Math.floor(length / 3));
+  let changed = 0;
+  for (let s = 0; s <= samples; s++) {
+    const cx = Math.round(a.x + ((b.x - a.x) * s) / samples);
+    const cy = Math.round(a.y + ((b.y - a.y) * s) / samples);
+    let hit = false;
+    for (let dy = -2; dy <= 2 && !hit; dy++) {
+      for (let dx = -2; dx <= 2 && !hit; dx++) {
+        const x = cx + dx;
+        const y = cy + dy;
+        if (x < 0 || y < 0 || x >= after.width || y >= after.height) continue;
+        hit = colourDistance(rgb(before, x, y), rgb(after, x, y)) > 24;
+      }
+    }
+    if (hit) changed++;
+  }
+  return { samples: samples + 1, changed };
+}
+
+// The lab's report, or an error text when the page says the lab could not start.
+async function readReport(page) {
+  return page.evaluate(() => {
+    const loading = document.getElementById('status');
+    if (loading && loading.textContent.startsWith('The lab could not start')) {
+      return { failed: loading.textContent };
+    }
+    const text = document.getElementById('lab-status')?.getAttribute('data-report');
+    if (!text) return null;
+    try {
+      return { report: JSON.parse(text), text: document.getElementById('lab-status').textContent };
+    } catch (error) {
+      return { invalid: `${error.message}: ${text.slice(0, 200)}` };
+    }
+  });
+}
+
+// Polls the report until `accept(report)` holds; returns it, or throws with the last one seen.
+async function waitForReport(page, accept, timeoutMs, what) {
+  const start = Date.now();
+  let last = null;
+  for (;;) {
+    const state = await readReport(page);
+    if (state?.failed) throw new Failure(`the page says: ${state.failed}`);
+    if (state?.invalid) throw new Failure(`data-report is not JSON: ${state.invalid}`);
+    if (state?.report) {
+      last = state.report;
+      if (accept(last)) return { report: last, text: state.text };
+    }
+    if (Date.now() - start > timeoutMs) {
+      throw new Failure(
+        `no ${what} after ${seconds(timeoutMs)}; last report: ${last ? JSON.stringify(last) : 'none'}`,
+      );
+    }
+    await page.waitForTimeout(100);
+  }
+}
+
+// Resolves after the page has shown `n` more animation frames.
+async function frames(page, n) {
+  await page.evaluate(
+    (count) =>
+      new Promise((done) => {
+        let left = count;
+        const step = () => (--left <= 0 ? done() : requestAnimationFrame(step));
+        requestAnimationFrame(step);
+      }),
+    n,
+  );
+}
+
+async function screenshot(page, name) {
+  const path = join(outDir, name);
+  const buffer = await page.screenshot({ path });
+  return { path, png: decode(buffer) };
+}
+
+async function runOne({ renderer, args }) {
+  for (const stale of ['start', 'ray', 'failure']) {
+    rmSync(join(outDir, `${renderer}-${stale}.png`), { force: true });
+  }
+  const profile = mkdtempSync(join(tmpdir(), 'bvhlab-e2e-'));
+  const problems = [];
+  const context = await chromium.launchPersistentContext(profile, {
+    executablePath,
+    headless: true,
+    args,
+    viewport: VIEWPORT,
+    deviceScaleFactor: 1,
+  });
+  const summary = { renderer };
+  try {
+    const page = context.pages()[0] ?? (await context.newPage());
+    page.setDefaultTimeout(READY_TIMEOUT_MS);
+    page.on('console', (message) => {
+      if (message.type() === 'error') problems.push(`console error: ${message.text()}`);
+    });
+    page.on('pageerror', (error) => problems.push(`page error: ${error.message}`));
+    page.on('request', (request) => {
+      const target = request.url();
+      if (!target.startsWith(origin) && !target.startsWith('data:')) {
+        problems.push(`request to another host: ${target}`);
+      }
+    });
+    page.on('requestfailed', (request) =>
+      problems.push(`request failed: ${request.url()} (${request.failure()?.errorText})`),
+    );
+
+    // 1. Start: the report says ready, on the expected renderer.
+    const started = Date.now();
+    await page.goto(url, { waitUntil: 'load' });
+    const { report, text } = await waitForReport(page, (r) => r.ready === true, READY_TIMEOUT_MS, 'ready report');
+    summary.readyMs = Date.now() - started;
+    check(
+      report.renderer === renderer,
+      `renderer: expected ${renderer}, the report says ${JSON.stringify(report.renderer)}`,
+    );
+    check(Array.isArray(report.canvas) && report.canvas.length === 4, `canvas: ${JSON.stringify(report.canvas)}`);
+    const [x0, y0, x1, y1] = report.canvas;
+    check(
+      x0 >= 0 && y0 >= 0 && x1 <= VIEWPORT.width + 1 && y1 <= VIEWPORT.height + 1 && x1 - x0 >= 200 && y1 - y0 >= 200,
+      `the drawing area ${JSON.stringify(report.canvas)} is not a sizeable part of the ${VIEWPORT.width}x${VIEWPORT.height} page`,
+    );
+    check(report.scene?.primitives > 0, `the starting scene has no primitives: ${JSON.stringify(report.scene)}`);
+    check(report.structure === 'AABB tree', `structure: expected "AABB tree", got ${JSON.stringify(report.structure)}`);
+    check(text && text.trim().length > 0, '#lab-status has no text for screen readers');
+    summary.scene = report.scene;
+    summary.structure = report.structure;
+
+    // 2. The first picture is not blank.
+    await frames(page, 3);
+    const start = await screenshot(page, `${renderer}-start.png`);
+    const rect = pixelRect(start.png, report.canvas);
+    const stats = colourStats(start.png, rect);
+    summary.colours = stats.distinct;
+    check(
+      stats.distinct >= 32 && stats.dominantShare < 0.995,
+      `the drawing area looks blank: ${stats.distinct} colours, the most common covers ` +
+        `${(stats.dominantShare * 100).toFixed(1)}% (${show(start.path)})`,
+    );
+
+    // 3. Drag a ray across the middle of the drawing area, slowly (about 2 s of small moves),
+    //    counting animation frames meanwhile.
+    const w = x1 - x0;
+    const h = y1 - y0;
+    const a = { x: x0 + 0.12 * w, y: y0 + 0.46 * h };
+    const b = { x: x0 + 0.88 * w, y: y0 + 0.54 * h };
+    await page.evaluate(() => {
+      window.__labFrames = 0;
+      window.__labCounting = true;
+      const tick = () => {
+        if (!window.__labCounting) return;
+        window.__labFrames++;
+        requestAnimationFrame(tick);
+      };
+      requestAnimationFrame(tick);
+    });
+    await page.mouse.move(a.x, a.y);
+    await page.mouse.down();
+    const dragStart = Date.now();
+    const moves = 60;
+    for (let i = 1; i <= moves; i++) {
+      await page.mouse.move(a.x + ((b.x - a.x) * i) / moves, a.y + ((b.y - a.y) * i) / moves);
+      await page.waitForTimeout(16);
+    }
+    const dragMs = Date.now() - dragStart;
+    const dragFrames = await page.evaluate(() => {
+      window.__labCounting = false;
+      return window.__labFrames;
+    });
+    await page.mouse.up();
+    summary.fps = (dragFrames * 1000) / dragMs;
+    summary.dragMs = dragMs;
+
+    // 4. The report answers the ray: a hit, nodes visited, the same answer as brute force.
+    await waitForReport(page, (r) => r.query?.hit != null, QUERY_TIMEOUT_MS, 'ray query with a hit');
+    // Let a few frames pass so that the picture and the report both show the released ray.
+    await frames(page, 3);
+    const { report: answered } = await waitForReport(page, (r) => r.query?.hit != null, QUERY_TIMEOUT_MS, 'ray query');
+    const q = answered.query;
+    summary.query = q;
+    summary.frameMs = answered.frame_ms;
+    check(q.kind === 'ray', `query.kind: expected "ray", got ${JSON.stringify(q.kind)}`);
+    check(
+      Number.isInteger(q.hit.primitive) && q.hit.primitive >= 0 && q.hit.primitive < answered.scene.primitives,
+      `hit.primitive ${q.hit.primitive} is not one of the scene's ${answered.scene.primitives} primitives`,
+    );
+    check(Number.isFinite(q.hit.t) && q.hit.t >= 0, `hit.t is ${q.hit.t}`);
+    check(q.nodes_visited > 0, `nodes_visited is ${q.nodes_visited}`);
+    check(q.bound_tests > 0, `bound_tests is ${q.bound_tests}`);
+    check(q.primitive_tests > 0, `primitive_tests is ${q.primitive_tests}`);
+    check(q.brute_force_tests > 0, `brute_force_tests is ${q.brute_force_tests}`);
+    check(q.agrees === true, `the AABB tree's answer differs from brute force's: ${JSON.stringify(q)}`);
+
+    // 5. The ray is drawn: the picture changed along the drag line.
+    const ray = await screenshot(page, `${renderer}-ray.png`);
+    const along = changesAlong(start.png, ray.png, a, b);
+    summary.changedAlongRay = along;
+    check(
+      along.changed >= 8,
+      `the picture hardly changed along the drag line (${along.changed} of ${along.samples} samples; ` +
+        `${show(start.path)} vs ${show(ray.path)})`,
+    );
+    summary.screenshots = [show(start.path), show(ray.path)];
+
+    check(problems.length === 0, `the page reported problems:\n  ${problems.join('\n  ')}`);
+    return summary;
+  } catch (error) {
+    const pages = context.pages();
+    if (pages.length > 0) {
+      await pages[0].screenshot({ path: join(outDir, `${renderer}-failure.png`) }).catch(() => {});
+    }
+    if (problems.length > 0 && !(error instanceof Failure && error.message.startsWith('the page reported'))) {
+      error.message += `\n  the page also reported:\n  ${problems.join('\n  ')}`;
+    }
+    error.summary = summary;
+    throw error;
+  } finally {
+    await context.close().catch(() => {});
+    rmSync(profile, { recursive: true, force: true });
+  }
+}
+
+function describe(s) {
+  const lines = [`${s.renderer}: ready in ${seconds(s.readyMs)}, ${s.scene.primitives} primitives, ${s.structure}, ${s.colours} colours at start`];
+  const q = s.query;
+  lines.push(
+    `  ray: hit primitive ${q.hit.primitive} at t = ${q.hit.t.toFixed(3)}` +
+      (q.hit.point ? ` (${q.hit.point.map((v) => v.toFixed(2)).join(', ')})` : '') +
+      `, agrees with brute force: ${q.agrees}`,
+  );
+  lines.push(
+    `  counters: ${q.nodes_visited} nodes visited, ${q.bound_tests} bound tests, ` +
+      `${q.primitive_tests} primitive tests (brute force: ${q.brute_force_tests})`,
+  );
+  lines.push(
+    `  frame rate while dragging: ${s.fps.toFixed(1)} frames/s over ${seconds(s.dragMs)}` +
+      (s.frameMs != null ? `; the lab's median frame time: ${Number(s.frameMs).toFixed(1)} ms` : '') +
+      ' (software rendering; not asserted)',
+  );
+  lines.push(`  ray drawn along ${s.changedAlongRay.changed} of ${s.changedAlongRay.samples} samples of the drag line`);
+  lines.push(`  screenshots: ${s.screenshots.join(', ')}`);
+  return lines.join('\n');
+}
+
+let passed = 0;
+let failed = 0;
+const results = [];
+for (const run of RUNS) {
+  try {
+    const summary = await runOne(run);
+    passed++;
+    results.push(summary);
+    console.log(`ok ${run.renderer}`);
+    console.log(describe(summary));
+  } catch (error) {
+    failed++;
+    console.log(`FAILED ${run.renderer}: ${error instanceof Failure ? error.message : error.stack}`);
+  }
+}
+writeFileSync(join(outDir, 'summary.json'), `${JSON.stringify(results, null, 2)}\n`);
+console.log(`e2e: ${passed} passed, ${failed} failed`);
+process.exit(failed === 0 ? 0 : 1);
