@@ -31,4 +31,9 @@ RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps
 step "core builds for wasm32-unknown-unknown"
 cargo build -p bvhlab --release --target wasm32-unknown-unknown
 
+step "browser end-to-end (headless Chromium, WebGPU and WebGL2)"
+# Installs what it lacks itself (Chromium as root, npm packages, wasm-bindgen-cli), builds dist/
+# with web/build.sh and drives the page; screenshots in target/e2e/.
+bash tests/e2e/run.sh
+
 step "all checks passed"

@@ -1,15 +1,26 @@
 #!/usr/bin/env bash
-# The README's first command: set up a fresh machine, build the web page into dist/, and serve
-# the lab on localhost.
+# The README's first command: sets up a fresh machine as far as needed, builds the web page into
+# dist/ and serves the lab on localhost.
 #
-# The browser lab (crates/bvhlab-app) is not written yet: until it is, this sets up the
-# toolchain and builds the query core for WebAssembly, which is what the lab will run on.
+#   bash web/serve.sh [PORT]      (or PORT=... in the environment; default 8080)
+#
+# web/build.sh installs the wasm32 target and wasm-bindgen-cli (the version in Cargo.lock) when
+# they are missing: about 3 minutes once, then seconds. The first release build of the lab for
+# wasm32 takes about 2 minutes on 2 cores; after that a few seconds.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-rustup target add wasm32-unknown-unknown
-cargo build -p bvhlab --release --target wasm32-unknown-unknown
-wasm=target/wasm32-unknown-unknown/release/libbvhlab.rlib
+port=${1:-${PORT:-8080}}
+
+bash web/build.sh
+
 echo
-echo "Built the bvhlab core for wasm32-unknown-unknown ($wasm)."
-echo "The browser lab itself is not built yet, so there is no page to serve."
+if command -v node >/dev/null; then
+  # Prints "bvh-lab is served at http://127.0.0.1:PORT/" once it listens; Ctrl-C stops it.
+  exec node web/server.mjs "$port"
+else
+  echo "node is not installed: serving dist/ with Python's http.server instead"
+  echo "(no Content-Security-Policy header; install Node.js for web/server.mjs)."
+  [ "$port" != 0 ] && echo "bvh-lab is served at http://127.0.0.1:$port/"
+  exec python3 -m http.server --bind 127.0.0.1 --directory dist "$port"
+fi

@@ -33,6 +33,7 @@ bash web/build.sh
 
 mkdir -p target/e2e
 log=target/e2e/server.log
+: >"$log"
 node web/server.mjs 0 >"$log" 2>&1 &
 server=$!
 trap 'kill "$server" 2>/dev/null || true; wait "$server" 2>/dev/null || true' EXIT
