@@ -1,0 +1,680 @@
+//! The canvas: pointer input for the active tool, pan and zoom, and the order things are
+//! drawn in (structure, query marks, scene, bounding volumes, queries, handles).
+
+use bvhlab::glam::Vec2;
+use bvhlab::{Aabb2, BoundingVolume, Ray2};
+use egui::{Color32, PointerButton, Sense, Stroke};
+
+use crate::app::{LabApp, RayHandles};
+use crate::paint::{WorldPainter, clipped_plane, colors};
+use crate::query::NodeMark;
+use crate::scene::{Shape, ShapeKind};
+use crate::tool::{BoxGrip, Interaction, RayEnd, Tool};
+use crate::volumes::{Fits, ObbPair, SlabExplain};
+
+/// How close (in screen points) a press must be to grab a handle or pick a shape.
+const GRAB: f32 = 10.0;
+
+/// Shows the canvas in the rest of `ui` and handles its input.
+pub fn canvas(app: &mut LabApp, ui: &mut egui::Ui) {
+    let (response, painter) = ui.allocate_painter(ui.available_size(), Sense::click_and_drag());
+    app.view.rect = response.rect;
+    if app.fit_pending {
+        if let Some((lo, hi)) = app.scene.bounds() {
+            app.view.fit(lo, hi);
+        }
+        app.fit_pending = false;
+    }
+    pan_and_zoom(app, ui, &response);
+    handle_tool(app, ui, &response);
+    app.refresh();
+    draw(app, &painter, response.hover_pos());
+}
+
+fn pan_and_zoom(app: &mut LabApp, ui: &egui::Ui, response: &egui::Response) {
+    let pans = response.dragged_by(PointerButton::Secondary)
+        || response.dragged_by(PointerButton::Middle)
+        || (app.tool == Tool::Pan && response.dragged_by(PointerButton::Primary));
+    if pans {
+        app.view.pan(response.drag_delta());
+    }
+    if let Some(hover) = response.hover_pos() {
+        let (scroll, pinch) = ui.input(|i| (i.smooth_scroll_delta.y, i.zoom_delta()));
+        let factor = (scroll * 0.002).exp() * pinch;
+        if factor != 1.0 {
+            app.view.zoom_at(hover, factor);
+        }
+    }
+}
+
+/// This frame's pointer and keyboard input, as the tools need it.
+#[allow(clippy::struct_excessive_bools)] // one flag per egui input the tools read
+struct Input {
+    /// The pointer, in world coordinates.
+    pointer: Option<Vec2>,
+    /// Where the current press began, in world coordinates.
+    press: Option<Vec2>,
+    /// The grab distance in world units.
+    grab: f32,
+    started: bool,
+    dragged: bool,
+    stopped: bool,
+    clicked: bool,
+    double_clicked: bool,
+    /// The drag's movement this frame, in world units.
+    delta: Vec2,
+    enter: bool,
+    escape: bool,
+    delete: bool,
+    shift: bool,
+}
+
+impl Input {
+    fn read(app: &LabApp, ui: &egui::Ui, response: &egui::Response) -> Self {
+        let delta = response.drag_delta();
+        let (enter, escape, delete, shift) = ui.input(|i| {
+            (
+                i.key_pressed(egui::Key::Enter),
+                i.key_pressed(egui::Key::Escape),
+                i.key_pressed(egui::Key::Delete) || i.key_pressed(egui::Key::Backspace),
+                i.modifiers.shift,
+            )
+        });
+        Self {
+            pointer: response
+                .interact_pointer_pos()
+                .or(response.hover_pos())
+                .map(|p| app.view.to_world(p)),
+            press: ui
+                .input(|i| i.pointer.press_origin())
+                .map(|p| app.view.to_world(p)),
+            grab: app.view.world_length(GRAB),
+            started: response.drag_started_by(PointerButton::Primary),
+            dragged: response.dragged_by(PointerButton::Primary),
+            stopped: response.drag_stopped_by(PointerButton::Primary),
+            clicked: response.clicked(),
+            double_clicked: response.double_clicked(),
+            delta: Vec2::new(delta.x, -delta.y) / app.view.scale,
+            enter,
+            escape,
+            delete,
+            shift,
+        }
+    }
+}
+
+fn handle_tool(app: &mut LabApp, ui: &egui::Ui, response: &egui::Response) {
+    let input = Input::read(app, ui, response);
+    match app.tool {
+        Tool::Pan => {}
+        Tool::Ray => ray_tool(app, &input),
+        Tool::Point => {
+            if (input.clicked || input.dragged)
+                && let Some(p) = input.pointer
+            {
+                app.point = Some(p);
+                app.marks_from_ray = false;
+            }
+        }
+        Tool::Segment => segment_tool(app, &input),
+        Tool::Polyline | Tool::Polygon => chain_tool(app, &input),
+        Tool::Points => points_tool(app, &input),
+        Tool::Select => select_tool(app, &input),
+        Tool::Obb => obb_tool(app, &input),
+    }
+    if input.stopped
+        && matches!(
+            app.interaction,
+            Interaction::Ray(_)
+                | Interaction::Move(_)
+                | Interaction::Box(_)
+                | Interaction::Segment(_)
+        )
+    {
+        app.interaction = Interaction::None;
+    }
+}
+
+fn ray_tool(app: &mut LabApp, input: &Input) {
+    if input.started
+        && let Some(p0) = input.press
+    {
+        let near = |q: Vec2| q.distance(p0) <= input.grab;
+        app.interaction = match app.ray {
+            Some(r) if near(r.origin) => Interaction::Ray(RayEnd::Origin),
+            Some(r) if near(r.target) => Interaction::Ray(RayEnd::Target),
+            _ => {
+                app.ray = Some(RayHandles {
+                    origin: p0,
+                    target: input.pointer.unwrap_or(p0),
+                });
+                Interaction::Ray(RayEnd::Target)
+            }
+        };
+    }
+    if input.dragged
+        && let (Interaction::Ray(end), Some(p), Some(ray)) =
+            (&app.interaction, input.pointer, app.ray.as_mut())
+    {
+        match end {
+            RayEnd::Origin => ray.origin = p,
+            RayEnd::Target => ray.target = p,
+        }
+        app.marks_from_ray = true;
+    }
+}
+
+fn segment_tool(app: &mut LabApp, input: &Input) {
+    if input.started
+        && let Some(p0) = input.press
+    {
+        app.interaction = Interaction::Segment(p0);
+    }
+    if input.stopped
+        && let (Interaction::Segment(a), Some(b)) = (&app.interaction, input.pointer)
+    {
+        let a = *a;
+        app.interaction = Interaction::None;
+        if a.distance(b) > input.grab * 0.5 {
+            add_shape(app, ShapeKind::Segment, vec![a, b]);
+        }
+    }
+}
+
+fn chain_tool(app: &mut LabApp, input: &Input) {
+    let kind = if app.tool == Tool::Polygon {
+        ShapeKind::Polygon
+    } else {
+        ShapeKind::Polyline
+    };
+    if input.clicked
+        && let Some(p) = input.pointer
+    {
+        match &mut app.interaction {
+            Interaction::Chain(points) => {
+                // A double-click clicks twice on the same spot: keep one point.
+                if points
+                    .last()
+                    .is_none_or(|&q| q.distance(p) > input.grab * 0.3)
+                {
+                    points.push(p);
+                }
+            }
+            _ => app.interaction = Interaction::Chain(vec![p]),
+        }
+    }
+    if (input.double_clicked || input.enter)
+        && let Interaction::Chain(points) =
+            std::mem::replace(&mut app.interaction, Interaction::None)
+    {
+        add_shape(app, kind, points);
+    }
+    if input.escape {
+        app.interaction = Interaction::None;
+    }
+}
+
+fn points_tool(app: &mut LabApp, input: &Input) {
+    let (true, Some(p)) = (input.clicked, input.pointer) else {
+        return;
+    };
+    match app.interaction {
+        Interaction::Cloud(i)
+            if app
+                .scene
+                .shapes()
+                .get(i)
+                .is_some_and(|s| s.kind == ShapeKind::Points) =>
+        {
+            app.scene.push_point(i, p);
+        }
+        _ => {
+            if let Some(i) = add_shape(app, ShapeKind::Points, vec![p]) {
+                app.interaction = Interaction::Cloud(i);
+            }
+        }
+    }
+}
+
+fn select_tool(app: &mut LabApp, input: &Input) {
+    if input.clicked
+        && let Some(p) = input.pointer
+    {
+        match (app.scene.pick(p, input.grab), input.shift) {
+            (Some(i), true) => {
+                if let Some(at) = app.selection.iter().position(|&s| s == i) {
+                    app.selection.remove(at);
+                } else {
+                    app.selection.push(i);
+                }
+            }
+            (Some(i), false) => app.selection = vec![i],
+            (None, _) => app.selection.clear(),
+        }
+    }
+    if input.started
+        && let Some(p0) = input.press
+        && let Some(i) = app.scene.pick(p0, input.grab)
+    {
+        if !app.selection.contains(&i) {
+            app.selection = vec![i];
+        }
+        app.interaction = Interaction::Move(p0);
+    }
+    if input.dragged
+        && let (Interaction::Move(last), Some(p)) = (&app.interaction, input.pointer)
+    {
+        let delta = p - *last;
+        for &i in &app.selection {
+            app.scene.translate(i, delta);
+        }
+        app.interaction = Interaction::Move(p);
+    }
+    if input.delete && !app.selection.is_empty() {
+        let removed = std::mem::take(&mut app.selection);
+        app.scene.remove(&removed);
+        app.message = Some(format!("Removed {} shape(s).", removed.len()));
+    }
+}
+
+fn obb_tool(app: &mut LabApp, input: &Input) {
+    let pair = app
+        .obb_pair
+        .get_or_insert_with(|| ObbPair::around(app.view.center, app.view.world_length(120.0)));
+    if input.started
+        && let Some(p0) = input.press
+    {
+        let poses = [pair.a, pair.b];
+        app.interaction =
+            if let Some(i) = (0..2).find(|&i| poses[i].handle().distance(p0) <= input.grab) {
+                Interaction::Box(BoxGrip::Turn(i))
+            } else if let Some(i) = (0..2).rev().find(|&i| poses[i].obb().contains(p0)) {
+                Interaction::Box(BoxGrip::Move(i))
+            } else {
+                Interaction::None
+            };
+    }
+    if input.dragged
+        && let (Interaction::Box(grip), Some(p)) = (&app.interaction, input.pointer)
+    {
+        match *grip {
+            BoxGrip::Move(i) => pose_mut(pair, i).center += input.delta,
+            BoxGrip::Turn(i) => {
+                let pose = pose_mut(pair, i);
+                let d = p - pose.center;
+                if d.length_squared() > 0.0 {
+                    pose.angle = d.y.atan2(d.x);
+                }
+            }
+        }
+    }
+}
+
+fn pose_mut(pair: &mut ObbPair, i: usize) -> &mut crate::volumes::BoxPose {
+    if i == 0 { &mut pair.a } else { &mut pair.b }
+}
+
+/// Adds a shape, or says why not; returns its index.
+fn add_shape(app: &mut LabApp, kind: ShapeKind, points: Vec<Vec2>) -> Option<usize> {
+    match Shape::new(kind, points) {
+        Ok(shape) => {
+            app.message = None;
+            Some(app.scene.add(shape))
+        }
+        Err(e) => {
+            app.message = Some(e);
+            None
+        }
+    }
+}
+
+/// A hue per leaf, for leaf colouring.
+fn leaf_colour(leaf: u32) -> Color32 {
+    let hue = (leaf as f32 * 0.618_034).fract();
+    egui::ecolor::Hsva::new(hue, 0.65, 0.95, 1.0).into()
+}
+
+fn draw(app: &mut LabApp, painter: &egui::Painter, hover: Option<egui::Pos2>) {
+    let view = app.view;
+    let wp = WorldPainter {
+        painter,
+        view: &view,
+    };
+    draw_structure(app, &wp);
+    draw_scene(app, &wp);
+    if app.display.volumes || app.display.slab_test {
+        draw_volumes(app, &wp);
+    }
+    draw_queries(app, &wp);
+    if app.tool == Tool::Obb
+        && let Some(pair) = &app.obb_pair
+    {
+        draw_obb_pair(pair, &wp);
+    }
+    draw_in_progress(app, &wp, hover.map(|h| app.view.to_world(h)));
+}
+
+fn draw_structure(app: &LabApp, wp: &WorldPainter<'_>) {
+    let Some(built) = &app.built else { return };
+    let marks = app.marks.as_ref().filter(|_| app.display.query_marks);
+    if app.display.structure {
+        let stroke = Stroke::new(1.0, colors::STRUCTURE);
+        for node in &built.outline {
+            if node.depth > app.display.max_depth {
+                continue;
+            }
+            wp.node_shape(&node.shape, stroke);
+            if node.splits.is_empty() {
+                continue;
+            }
+            let region = node.shape.aabb();
+            let clip = ancestor_half_planes(&built.outline, node.id);
+            for split in &node.splits {
+                if let Some((a, b)) = clipped_plane(split.normal, split.offset, &region, &clip) {
+                    wp.line(
+                        a,
+                        b,
+                        Stroke::new(1.5, colors::STRUCTURE.gamma_multiply(1.6)),
+                    );
+                }
+            }
+        }
+    }
+    if let Some(marks) = marks {
+        for (i, mark) in marks.nodes.iter().enumerate() {
+            let Some(mark) = mark else { continue };
+            let node = &built.outline[i];
+            if node.depth > app.display.max_depth {
+                continue;
+            }
+            let color = match mark {
+                NodeMark::Visited => colors::VISITED,
+                NodeMark::Culled => colors::CULLED,
+                NodeMark::Pruned => colors::PRUNED,
+            };
+            wp.node_fill(&node.shape, color.gamma_multiply(0.08));
+            wp.node_shape(&node.shape, Stroke::new(1.5, color));
+        }
+    }
+}
+
+/// The half-planes of a BSP node's ancestors, which bound the node's region: each ancestor's
+/// split, kept on the side the node lies.
+fn ancestor_half_planes(
+    outline: &[bvhlab::NodeOutline<Vec2>],
+    id: bvhlab::NodeId,
+) -> Vec<(Vec2, f32, bool)> {
+    let mut out = Vec::new();
+    let mut child = id;
+    while let Some(parent) = outline[child.index()].parent {
+        let p = &outline[parent.index()];
+        if let ([split], Some(side)) = (
+            p.splits.as_slice(),
+            p.children.iter().position(|&c| c == child),
+        ) {
+            out.push((split.normal, split.offset, side == 1));
+        }
+        child = parent;
+    }
+    out
+}
+
+fn draw_scene(app: &LabApp, wp: &WorldPainter<'_>) {
+    let built = app.built.as_ref();
+    let leaf_colours = app.display.leaf_colours && built.is_some();
+    let mut prim = 0usize;
+    for (i, shape) in app.scene.shapes().iter().enumerate() {
+        let selected = app.selection.contains(&i);
+        for s in shape.primitives() {
+            let color = if selected {
+                colors::SELECTED
+            } else if leaf_colours {
+                built
+                    .and_then(|b| b.leaf_of.get(prim).copied().flatten())
+                    .map_or(colors::SCENE, leaf_colour)
+            } else {
+                colors::SCENE
+            };
+            if s.a == s.b {
+                wp.dot(s.a, 2.5, color);
+            } else {
+                wp.line(s.a, s.b, Stroke::new(1.5, color));
+            }
+            prim += 1;
+        }
+    }
+    // The primitives the query tested exactly.
+    if let (Some(marks), Some(built)) = (app.marks.as_ref(), built)
+        && app.display.query_marks
+    {
+        for &(p, _) in &marks.tested {
+            if let Some(s) = built.prims.segments.get(p as usize) {
+                if s.a == s.b {
+                    wp.dot(s.a, 3.5, colors::TESTED);
+                } else {
+                    wp.line(s.a, s.b, Stroke::new(2.5, colors::TESTED));
+                }
+            }
+        }
+    }
+}
+
+/// The far end of the ray on screen: where it leaves the visible part of the world.
+fn visible_end(ray: &Ray2, view: &crate::view::View) -> Vec2 {
+    let (lo, hi) = view.visible_world();
+    let visible = Aabb2::new(lo, hi);
+    let t = visible
+        .ray_interval(ray)
+        .map_or(0.0, |(_, exit)| exit)
+        .max(ray.dir().length().recip() * view.world_length(40.0));
+    ray.at(t)
+}
+
+fn draw_queries(app: &LabApp, wp: &WorldPainter<'_>) {
+    if let Some(handles) = app.ray {
+        if let Ok(ray) = handles.ray() {
+            let end = visible_end(&ray, wp.view);
+            wp.line(ray.origin(), end, Stroke::new(2.0, colors::QUERY));
+            if let Some(hit) = app
+                .ray_outcome
+                .as_ref()
+                .and_then(crate::query::RayOutcome::hit_point)
+            {
+                wp.dot(hit, 6.0, colors::ANSWER);
+            }
+        }
+        wp.dot(handles.origin, 5.0, colors::QUERY);
+        wp.text(handles.origin, " e", colors::QUERY);
+        wp.painter.circle_stroke(
+            wp.view.to_screen(handles.target),
+            5.0,
+            Stroke::new(2.0, colors::QUERY),
+        );
+        wp.text(handles.target, " s", colors::QUERY);
+    }
+    if let Some(outcome) = &app.point_outcome {
+        for (rank, n) in outcome.nearest.iter().enumerate() {
+            let stroke = Stroke::new(if rank == 0 { 2.0 } else { 1.0 }, colors::ANSWER);
+            wp.line(outcome.point, n.point, stroke);
+            wp.dot(n.point, 4.0, colors::ANSWER);
+        }
+        if let Some(best) = outcome.nearest.last() {
+            // The ball of the current minimum: nothing outside it can be nearer.
+            wp.painter.circle_stroke(
+                wp.view.to_screen(outcome.point),
+                wp.view.screen_length(best.distance),
+                Stroke::new(1.0, colors::ANSWER.gamma_multiply(0.6)),
+            );
+        }
+    }
+    if let Some(p) = app.point {
+        wp.dot(p, 5.0, colors::QUERY);
+        wp.text(p, " q", colors::QUERY);
+    }
+}
+
+fn draw_volumes(app: &mut LabApp, wp: &WorldPainter<'_>) {
+    let Some(fits) = app.fits() else { return };
+    let t = &app.volume_toggles;
+    if app.display.volumes {
+        let stroke = |c: Color32| Stroke::new(1.8, c);
+        if t.hull {
+            wp.polygon(
+                fits.hull.vertices(),
+                stroke(Color32::from_rgb(200, 120, 255)),
+            );
+        }
+        if t.aabb {
+            wp.aabb(&fits.aabb, stroke(Color32::from_rgb(120, 200, 255)));
+        }
+        if t.obb {
+            wp.obb(&fits.obb, stroke(Color32::from_rgb(120, 255, 160)));
+            // The principal axes, scaled by the standard deviation along each.
+            for (axis, var) in fits
+                .pca
+                .axes
+                .iter()
+                .zip([fits.pca.variances.x, fits.pca.variances.y])
+            {
+                let len = var.max(0.0).sqrt();
+                wp.line(
+                    fits.pca.mean - *axis * len,
+                    fits.pca.mean + *axis * len,
+                    Stroke::new(1.0, Color32::from_rgb(120, 255, 160)),
+                );
+            }
+        }
+        if t.centroid {
+            wp.sphere(&fits.centroid, stroke(Color32::from_rgb(255, 200, 120)));
+            wp.dot(fits.centroid.center, 3.0, Color32::from_rgb(255, 200, 120));
+        }
+        if t.ritter {
+            wp.sphere(&fits.ritter, stroke(Color32::from_rgb(255, 150, 150)));
+        }
+        if t.welzl {
+            wp.sphere(&fits.welzl, stroke(Color32::from_rgb(255, 240, 120)));
+        }
+    }
+    if app.display.slab_test
+        && let Some(Ok(ray)) = app.ray.map(|r| r.ray())
+    {
+        draw_slab_test(&fits.aabb, &ray, wp);
+    }
+}
+
+fn draw_slab_test(aabb: &Aabb2, ray: &Ray2, wp: &WorldPainter<'_>) {
+    if aabb.is_empty() {
+        return;
+    }
+    let (lo, hi) = wp.view.visible_world();
+    let thin = |c: Color32| Stroke::new(1.0, c.gamma_multiply(0.7));
+    for x in [aabb.min.x, aabb.max.x] {
+        wp.line(Vec2::new(x, lo.y), Vec2::new(x, hi.y), thin(colors::SLAB_X));
+    }
+    for y in [aabb.min.y, aabb.max.y] {
+        wp.line(Vec2::new(lo.x, y), Vec2::new(hi.x, y), thin(colors::SLAB_Y));
+    }
+    let explain = SlabExplain::new(aabb, ray);
+    let t_far_visible = (visible_end(ray, wp.view) - ray.origin()).length() / ray.dir().length();
+    let clamp = |t: f32| t.clamp(-t_far_visible, t_far_visible);
+    let normal = ray.dir().normalize().perp();
+    let offset = |px: f32| normal * wp.view.world_length(px);
+    for (axis, color, px) in [(0, colors::SLAB_X, 7.0), (1, colors::SLAB_Y, -7.0)] {
+        let a = &explain.axes[axis];
+        if a.t_min <= a.t_max {
+            wp.line(
+                ray.at(clamp(a.t_min)) + offset(px),
+                ray.at(clamp(a.t_max)) + offset(px),
+                Stroke::new(4.0, color),
+            );
+        }
+    }
+    if explain.hits() {
+        wp.line(
+            ray.at(clamp(explain.t_enter)),
+            ray.at(clamp(explain.t_exit)),
+            Stroke::new(5.0, colors::ANSWER),
+        );
+    }
+}
+
+fn draw_obb_pair(pair: &ObbPair, wp: &WorldPainter<'_>) {
+    let tests = pair.tests();
+    let separating = tests.iter().find(|t| t.separates());
+    let color = if separating.is_some() {
+        colors::VISITED
+    } else {
+        colors::CULLED
+    };
+    for pose in [pair.a, pair.b] {
+        let obb = pose.obb();
+        wp.convex_fill(&crate::paint::obb_corners(&obb), color.gamma_multiply(0.12));
+        wp.obb(&obb, Stroke::new(2.0, color));
+        wp.line(pose.center, pose.handle(), Stroke::new(1.0, color));
+        wp.dot(pose.handle(), 5.0, color);
+    }
+    // The projections on the separating axis (or, when they overlap, on every axis).
+    let shown: Vec<_> = separating.map_or_else(|| tests.clone(), |t| vec![*t]);
+    let mid = (pair.a.center + pair.b.center) * 0.5;
+    let reach = pair.a.half.length()
+        + pair.b.half.length()
+        + (pair.a.center - pair.b.center).length() * 0.5;
+    for (k, test) in shown.iter().enumerate() {
+        let axis = test.axis.normalize_or_zero();
+        let base = mid - axis * axis.dot(mid) + axis.perp() * (reach + 0.6 * k as f32 + 0.5);
+        let line = |(lo, hi): (f32, f32), shift: f32, c: Color32| {
+            wp.line(
+                base + axis * lo + axis.perp() * shift,
+                base + axis * hi + axis.perp() * shift,
+                Stroke::new(4.0, c),
+            );
+        };
+        wp.line(
+            base + axis * (axis.dot(mid) - reach * 1.5),
+            base + axis * (axis.dot(mid) + reach * 1.5),
+            Stroke::new(1.0, Color32::GRAY),
+        );
+        line(test.interval_a, 0.12, Color32::from_rgb(255, 200, 120));
+        line(test.interval_b, -0.12, Color32::from_rgb(120, 200, 255));
+    }
+}
+
+fn draw_in_progress(app: &LabApp, wp: &WorldPainter<'_>, hover: Option<Vec2>) {
+    let stroke = Stroke::new(1.5, colors::SELECTED);
+    match &app.interaction {
+        Interaction::Segment(a) => {
+            if let Some(h) = hover {
+                wp.line(*a, h, stroke);
+            }
+        }
+        Interaction::Chain(points) => {
+            for w in points.windows(2) {
+                wp.line(w[0], w[1], stroke);
+            }
+            if let (Some(&last), Some(h)) = (points.last(), hover) {
+                wp.line(
+                    last,
+                    h,
+                    Stroke::new(1.0, colors::SELECTED.gamma_multiply(0.6)),
+                );
+            }
+            for &p in points {
+                wp.dot(p, 3.0, colors::SELECTED);
+            }
+        }
+        _ => {}
+    }
+}
+
+impl LabApp {
+    /// The bounding volumes of the selected shapes (all shapes when none is selected),
+    /// cached until the scene or the selection changes.
+    pub fn fits(&mut self) -> Option<Fits> {
+        let key = (self.scene.revision(), self.selection.clone());
+        if self.fits_cache.as_ref().is_none_or(|(k, _)| *k != key) {
+            let fits = Fits::of(&self.scene.vertices(&self.selection));
+            self.fits_cache = Some((key, fits));
+        }
+        self.fits_cache.as_ref().and_then(|(_, f)| f.clone())
+    }
+}

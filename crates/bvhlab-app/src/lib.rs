@@ -1,0 +1,29 @@
+//! bvh-lab's interactive lab (the lecture in ../shared/LECTURE.md, in 2D): draw a scene, fit
+//! bounding volumes, build a spatial structure, and drag rays and query points through it.
+//!
+//! The lab only consumes what the core reports: each structure's
+//! [`Outline`](bvhlab::Outline) to draw it, query answers and costs, and the observer's
+//! [`Event`](bvhlab::Event)s to show what a query visited, culled and pruned.
+//!
+//! - [`app`]: the state and the layout; [`panels`]: the controls; [`canvas`]: input and drawing.
+//! - [`scene`], [`presets`]: what is drawn; [`structures`]: one dispatch over the core's
+//!   structures; [`query`]: queries and their events; [`volumes`]: lecture §2 as data.
+//! - [`report`]: the lab's state for the page (the browser test and screen readers read it).
+
+pub mod app;
+pub mod canvas;
+pub mod frame_clock;
+pub mod paint;
+pub mod panels;
+pub mod presets;
+pub mod query;
+pub mod report;
+pub mod scene;
+pub mod structures;
+pub mod tool;
+pub mod view;
+pub mod volumes;
+#[cfg(target_arch = "wasm32")]
+pub mod web;
+
+pub use app::LabApp;

@@ -1,0 +1,220 @@
+//! Drawing world-space geometry on the canvas through the [`View`], and the lab's colours.
+
+use bvhlab::glam::Vec2;
+use bvhlab::{Aabb2, NodeShape, Obb2, Sphere2};
+use egui::{Color32, Painter, Shape, Stroke};
+
+use crate::view::View;
+
+/// The lab's palette, one meaning per colour.
+pub mod colors {
+    use egui::Color32;
+
+    /// Scene shapes.
+    pub const SCENE: Color32 = Color32::from_rgb(200, 200, 210);
+    /// Selected shapes.
+    pub const SELECTED: Color32 = Color32::from_rgb(255, 210, 80);
+    /// Rays and query points.
+    pub const QUERY: Color32 = Color32::from_rgb(80, 220, 255);
+    /// Hits and closest points.
+    pub const ANSWER: Color32 = Color32::from_rgb(255, 70, 200);
+    /// Nodes a query went into.
+    pub const VISITED: Color32 = Color32::from_rgb(90, 230, 120);
+    /// Nodes whose bounding volume the query missed.
+    pub const CULLED: Color32 = Color32::from_rgb(240, 90, 70);
+    /// Nodes skipped by branch and bound.
+    pub const PRUNED: Color32 = Color32::from_rgb(250, 160, 40);
+    /// Structure outlines not touched by the query.
+    pub const STRUCTURE: Color32 = Color32::from_rgba_premultiplied(110, 130, 190, 150);
+    /// Primitives the query tested exactly.
+    pub const TESTED: Color32 = Color32::from_rgb(255, 140, 0);
+    /// The x slab.
+    pub const SLAB_X: Color32 = Color32::from_rgb(255, 100, 100);
+    /// The y slab.
+    pub const SLAB_Y: Color32 = Color32::from_rgb(110, 160, 255);
+}
+
+/// Draws world geometry.
+pub struct WorldPainter<'a> {
+    /// The egui painter, clipped to the canvas.
+    pub painter: &'a Painter,
+    /// The transform.
+    pub view: &'a View,
+}
+
+impl WorldPainter<'_> {
+    /// A segment.
+    pub fn line(&self, a: Vec2, b: Vec2, stroke: Stroke) {
+        self.painter
+            .line_segment([self.view.to_screen(a), self.view.to_screen(b)], stroke);
+    }
+
+    /// A dot of `radius` screen points.
+    pub fn dot(&self, p: Vec2, radius: f32, color: Color32) {
+        self.painter
+            .circle_filled(self.view.to_screen(p), radius, color);
+    }
+
+    /// A closed polygon's outline.
+    pub fn polygon(&self, points: &[Vec2], stroke: Stroke) {
+        let pts = points.iter().map(|&p| self.view.to_screen(p)).collect();
+        self.painter.add(Shape::closed_line(pts, stroke));
+    }
+
+    /// A filled convex polygon.
+    pub fn convex_fill(&self, points: &[Vec2], fill: Color32) {
+        let pts = points.iter().map(|&p| self.view.to_screen(p)).collect();
+        self.painter
+            .add(Shape::convex_polygon(pts, fill, Stroke::NONE));
+    }
+
+    /// An axis-aligned box.
+    pub fn aabb(&self, b: &Aabb2, stroke: Stroke) {
+        if !(b.min.is_finite() && b.max.is_finite()) {
+            return;
+        }
+        let rect = egui::Rect::from_two_pos(self.view.to_screen(b.min), self.view.to_screen(b.max));
+        self.painter
+            .rect_stroke(rect, 0.0, stroke, egui::StrokeKind::Middle);
+    }
+
+    /// An axis-aligned box, filled.
+    pub fn aabb_fill(&self, b: &Aabb2, fill: Color32) {
+        if !(b.min.is_finite() && b.max.is_finite()) {
+            return;
+        }
+        let rect = egui::Rect::from_two_pos(self.view.to_screen(b.min), self.view.to_screen(b.max));
+        self.painter.rect_filled(rect, 0.0, fill);
+    }
+
+    /// A circle.
+    pub fn sphere(&self, s: &Sphere2, stroke: Stroke) {
+        if s.center.is_finite() && s.radius.is_finite() && s.radius >= 0.0 {
+            self.painter.circle_stroke(
+                self.view.to_screen(s.center),
+                self.view.screen_length(s.radius),
+                stroke,
+            );
+        }
+    }
+
+    /// An oriented box.
+    pub fn obb(&self, o: &Obb2, stroke: Stroke) {
+        let corners = obb_corners(o);
+        if corners.iter().all(|c| c.is_finite()) {
+            self.polygon(&corners, stroke);
+        }
+    }
+
+    /// A node's shape.
+    pub fn node_shape(&self, shape: &NodeShape<Vec2>, stroke: Stroke) {
+        match shape {
+            NodeShape::Aabb(b) => self.aabb(b, stroke),
+            NodeShape::Sphere(s) => self.sphere(s, stroke),
+            NodeShape::Obb(o) => self.obb(o, stroke),
+        }
+    }
+
+    /// A node's shape, filled (boxes and oriented boxes; circles as a disc).
+    pub fn node_fill(&self, shape: &NodeShape<Vec2>, fill: Color32) {
+        match shape {
+            NodeShape::Aabb(b) => self.aabb_fill(b, fill),
+            NodeShape::Sphere(s) => {
+                if s.center.is_finite() && s.radius.is_finite() {
+                    self.painter.circle_filled(
+                        self.view.to_screen(s.center),
+                        self.view.screen_length(s.radius),
+                        fill,
+                    );
+                }
+            }
+            NodeShape::Obb(o) => self.convex_fill(&obb_corners(o), fill),
+        }
+    }
+
+    /// Text at a world point.
+    pub fn text(&self, at: Vec2, text: impl ToString, color: Color32) {
+        self.painter.text(
+            self.view.to_screen(at),
+            egui::Align2::LEFT_BOTTOM,
+            text,
+            egui::FontId::proportional(13.0),
+            color,
+        );
+    }
+}
+
+/// An oriented box's corners in order around it.
+pub fn obb_corners(o: &Obb2) -> [Vec2; 4] {
+    let [u, v] = o.axes;
+    let (hu, hv) = (u * o.half_extents.x, v * o.half_extents.y);
+    [
+        o.center - hu - hv,
+        o.center + hu - hv,
+        o.center + hu + hv,
+        o.center - hu + hv,
+    ]
+}
+
+/// The part of the line `normal · x = offset` inside `bounds`, clipped further to the
+/// half-planes `clip` (each `(normal, offset, keep_above)`): a BSP split drawn only across
+/// its own region.
+pub fn clipped_plane(
+    normal: Vec2,
+    offset: f32,
+    bounds: &Aabb2,
+    clip: &[(Vec2, f32, bool)],
+) -> Option<(Vec2, Vec2)> {
+    if normal.length_squared() == 0.0 || !bounds.min.is_finite() || !bounds.max.is_finite() {
+        return None;
+    }
+    let n = normal.normalize();
+    let base = n * (offset / normal.length());
+    let dir = n.perp();
+    let (mut lo, mut hi) = (f32::NEG_INFINITY, f32::INFINITY);
+    // Clip against the box's four sides, then the ancestors' half-planes.
+    let mut planes: Vec<(Vec2, f32, bool)> = vec![
+        (Vec2::X, bounds.min.x, true),
+        (Vec2::X, bounds.max.x, false),
+        (Vec2::Y, bounds.min.y, true),
+        (Vec2::Y, bounds.max.y, false),
+    ];
+    planes.extend_from_slice(clip);
+    for (m, d, above) in planes {
+        // Points base + s dir with m·x >= d (above) or <= d (below).
+        let (rate, value) = (m.dot(dir), m.dot(base) - d);
+        let sign = if above { 1.0 } else { -1.0 };
+        let (rate, value) = (rate * sign, value * sign);
+        if rate.abs() < 1e-12 {
+            if value < -1e-6 * (1.0 + d.abs()) {
+                return None;
+            }
+            continue;
+        }
+        let s = -value / rate;
+        if rate > 0.0 {
+            lo = lo.max(s);
+        } else {
+            hi = hi.min(s);
+        }
+    }
+    (lo < hi && lo.is_finite() && hi.is_finite()).then(|| (base + dir * lo, base + dir * hi))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn planes_clip_to_their_region() {
+        let bounds = Aabb2::new(Vec2::ZERO, Vec2::splat(10.0));
+        let (a, b) = clipped_plane(Vec2::X, 4.0, &bounds, &[]).expect("crosses the box");
+        assert!((a.x - 4.0).abs() < 1e-5 && (b.x - 4.0).abs() < 1e-5);
+        assert!((a.y - b.y).abs() > 9.99);
+        // Keep only y >= 6: the line x = 4 is cut to y in [6, 10].
+        let (a, b) =
+            clipped_plane(Vec2::X, 4.0, &bounds, &[(Vec2::Y, 6.0, true)]).expect("still crosses");
+        assert!((a.y.min(b.y) - 6.0).abs() < 1e-4, "{a} {b}");
+        assert!(clipped_plane(Vec2::X, 40.0, &bounds, &[]).is_none());
+    }
+}

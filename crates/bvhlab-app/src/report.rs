@@ -1,0 +1,177 @@
+//! What the lab reports about itself, as text for screen readers and as JSON for the page
+//! (the browser test reads it; a course page embedding the lab can too).
+
+use std::fmt::Write as _;
+
+use serde::Serialize;
+
+use crate::app::LabApp;
+
+/// The lab's state in brief.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct Report {
+    /// The lab has drawn at least one frame.
+    pub ready: bool,
+    /// The graphics backend.
+    pub renderer: Option<String>,
+    /// The drawing area, in points (CSS pixels on the web): `[x0, y0, x1, y1]`.
+    pub canvas: [f32; 4],
+    /// The scene.
+    pub scene: SceneReport,
+    /// The structure's name.
+    pub structure: String,
+    /// The ray query, if a ray is drawn.
+    pub query: Option<RayReport>,
+    /// The point query, if a point is placed.
+    pub nearest: Option<NearestReport>,
+    /// The median frame time in milliseconds.
+    pub frame_ms: Option<f64>,
+}
+
+/// The scene's size.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct SceneReport {
+    /// Shapes drawn.
+    pub shapes: usize,
+    /// Primitives (segments and points) the structures are built on.
+    pub primitives: usize,
+}
+
+/// The ray query's answer and cost.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RayReport {
+    /// Always "ray".
+    pub kind: &'static str,
+    /// Origin and direction.
+    pub ray: [f32; 4],
+    /// The first hit.
+    pub hit: Option<HitReport>,
+    /// Nodes (or cells) the query entered.
+    pub nodes_visited: u64,
+    /// Bounding-volume tests.
+    pub bound_tests: u64,
+    /// Exact primitive tests.
+    pub primitive_tests: u64,
+    /// Brute force's primitive tests.
+    pub brute_force_tests: u64,
+    /// Whether the structure's answer equals brute force's.
+    pub agrees: bool,
+}
+
+/// A hit.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct HitReport {
+    /// The primitive's index.
+    pub primitive: usize,
+    /// The ray parameter.
+    pub t: f32,
+    /// The hit point.
+    pub point: [f32; 2],
+}
+
+/// The point query's answer and cost.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct NearestReport {
+    /// The query point.
+    pub point: [f32; 2],
+    /// The nearest primitive, its closest point and the distance.
+    pub nearest: Option<(usize, [f32; 2], f32)>,
+    /// Nodes entered.
+    pub nodes_visited: u64,
+    /// Bounding-volume distance tests.
+    pub bound_tests: u64,
+    /// Exact distance computations.
+    pub primitive_tests: u64,
+    /// Brute force's distance computations.
+    pub brute_force_tests: u64,
+    /// Whether the structure's answer equals brute force's.
+    pub agrees: bool,
+}
+
+impl Report {
+    /// The report of the lab's current state.
+    pub fn of(app: &LabApp) -> Self {
+        let r = app.view.rect;
+        Self {
+            ready: true,
+            renderer: app.renderer.clone(),
+            canvas: [r.min.x, r.min.y, r.max.x, r.max.y],
+            scene: SceneReport {
+                shapes: app.scene.shapes().len(),
+                primitives: app.built.as_ref().map_or(0, |b| b.prims.segments.len()),
+            },
+            structure: app.settings.kind.label().to_owned(),
+            query: app.ray_outcome.as_ref().map(|o| RayReport {
+                kind: "ray",
+                ray: [
+                    o.ray.origin().x,
+                    o.ray.origin().y,
+                    o.ray.dir().x,
+                    o.ray.dir().y,
+                ],
+                hit: o.hit.map(|h| {
+                    let p = o.ray.at(h.t);
+                    HitReport {
+                        primitive: h.prim,
+                        t: h.t,
+                        point: [p.x, p.y],
+                    }
+                }),
+                nodes_visited: o.cost.nodes_visited,
+                bound_tests: o.cost.bound_tests,
+                primitive_tests: o.cost.prim_tests,
+                brute_force_tests: o.brute_cost.prim_tests,
+                agrees: o.agrees(),
+            }),
+            nearest: app.point_outcome.as_ref().map(|o| NearestReport {
+                point: [o.point.x, o.point.y],
+                nearest: o
+                    .nearest
+                    .first()
+                    .map(|n| (n.prim, [n.point.x, n.point.y], n.distance)),
+                nodes_visited: o.cost.nodes_visited,
+                bound_tests: o.cost.bound_tests,
+                primitive_tests: o.cost.prim_tests,
+                brute_force_tests: o.brute_cost.prim_tests,
+                agrees: o.agrees(),
+            }),
+            frame_ms: app.clock.median_ms(),
+        }
+    }
+
+    /// The report as JSON.
+    pub fn json(&self) -> String {
+        serde_json::to_string(self).unwrap_or_else(|e| format!("{{\"error\":\"{e}\"}}"))
+    }
+
+    /// The report as one sentence for screen readers.
+    pub fn text(&self) -> String {
+        let mut s = format!(
+            "bvh-lab: {} primitives, {}.",
+            self.scene.primitives, self.structure
+        );
+        if let Some(q) = &self.query {
+            match &q.hit {
+                Some(h) => {
+                    let _ = write!(
+                        s,
+                        " Ray hits primitive {} at t = {:.3}, point ({:.2}, {:.2}).",
+                        h.primitive, h.t, h.point[0], h.point[1]
+                    );
+                }
+                None => s += " Ray hits nothing.",
+            }
+            let _ = write!(
+                s,
+                " Nodes visited {}, bounding-volume tests {}, primitive tests {} (brute force {}).",
+                q.nodes_visited, q.bound_tests, q.primitive_tests, q.brute_force_tests
+            );
+        }
+        if let Some(n) = &self.nearest
+            && let Some((prim, _, d)) = n.nearest
+        {
+            let _ = write!(s, " Nearest primitive {prim} at distance {d:.3}.");
+        }
+        s
+    }
+}

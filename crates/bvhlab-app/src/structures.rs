@@ -1,0 +1,267 @@
+//! The structure the student picks, its build options, and one dispatch over the concrete
+//! core types so the rest of the lab handles "a structure" without knowing which.
+
+use bvhlab::glam::Vec2;
+use bvhlab::structure::bvh::SphereFit;
+use bvhlab::structure::kdtree::{AxisRule, KdBuilder};
+use bvhlab::structure::{
+    BspOptions, BvhOptions, GridOptions, KdTreeOptions, NodeOutline, OrthtreeOptions, SplitMethod,
+};
+use bvhlab::{
+    Aabb2, AabbTree2, BruteForce, Bsp2, Grid2, KdTree2, Nearest, ObbTree2, Observer, Outline,
+    Quadtree2, Ray2, Segment2, SpatialIndex, SphereTree2, Stats, Traced,
+};
+
+/// The structures the lab offers, in the lecture's order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum StructureKind {
+    /// No structure: test every primitive.
+    BruteForce,
+    /// A BVH of circles (bounding spheres).
+    SphereTree,
+    /// A BVH of axis-aligned boxes.
+    AabbTree,
+    /// A BVH of oriented boxes.
+    ObbTree,
+    /// A uniform grid.
+    Grid,
+    /// A BSP tree (autopartition).
+    Bsp,
+    /// A quadtree (the 2D octree).
+    Quadtree,
+    /// A k-d tree.
+    KdTree,
+}
+
+impl StructureKind {
+    /// Every kind, in menu order.
+    pub const ALL: [Self; 8] = [
+        Self::BruteForce,
+        Self::SphereTree,
+        Self::AabbTree,
+        Self::ObbTree,
+        Self::Grid,
+        Self::Bsp,
+        Self::Quadtree,
+        Self::KdTree,
+    ];
+
+    /// The lecture's name for it.
+    pub fn label(self) -> &'static str {
+        match self {
+            Self::BruteForce => "brute force (no structure)",
+            Self::SphereTree => "sphere tree",
+            Self::AabbTree => "AABB tree",
+            Self::ObbTree => "OBB tree",
+            Self::Grid => "uniform grid",
+            Self::Bsp => "BSP tree",
+            Self::Quadtree => "quadtree",
+            Self::KdTree => "k-d tree",
+        }
+    }
+
+    /// Whether it is a bounding volume hierarchy (object partitioning).
+    pub fn is_bvh(self) -> bool {
+        matches!(self, Self::SphereTree | Self::AabbTree | Self::ObbTree)
+    }
+}
+
+/// How the k-d tree chooses its planes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum KdSplit {
+    /// Median of the centres, axes in turn (x, y, x, ...).
+    MedianRoundRobin,
+    /// Median of the centres across the cell's longest axis.
+    MedianLongest,
+    /// Surface area heuristic.
+    Sah,
+}
+
+/// Every build option the lab exposes; equal options and scene give an equal structure.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BuildSettings {
+    /// Which structure.
+    pub kind: StructureKind,
+    /// BVH split method.
+    pub bvh_split: SplitMethod,
+    /// Sphere-tree node fit.
+    pub sphere_fit: SphereFit,
+    /// BVH, k-d, BSP and quadtree leaf size.
+    pub leaf_size: usize,
+    /// k-d tree planes.
+    pub kd_split: KdSplit,
+    /// Grid cells per axis; 0 means Cleary and Wyvill's automatic resolution.
+    pub grid_cells: u32,
+    /// Quadtree depth limit.
+    pub quadtree_depth: usize,
+}
+
+impl Default for BuildSettings {
+    fn default() -> Self {
+        Self {
+            kind: StructureKind::AabbTree,
+            bvh_split: SplitMethod::SpatialMedian,
+            sphere_fit: SphereFit::Ritter,
+            leaf_size: 2,
+            kd_split: KdSplit::MedianRoundRobin,
+            grid_cells: 0,
+            quadtree_depth: 8,
+        }
+    }
+}
+
+/// A built structure of any kind.
+#[derive(Clone, Debug)]
+pub enum Built {
+    /// See [`StructureKind::BruteForce`].
+    BruteForce(BruteForce<Segment2>),
+    /// See [`StructureKind::SphereTree`].
+    SphereTree(SphereTree2),
+    /// See [`StructureKind::AabbTree`].
+    AabbTree(AabbTree2),
+    /// See [`StructureKind::ObbTree`].
+    ObbTree(ObbTree2),
+    /// See [`StructureKind::Grid`].
+    Grid(Grid2),
+    /// See [`StructureKind::Bsp`].
+    Bsp(Bsp2),
+    /// See [`StructureKind::Quadtree`].
+    Quadtree(Quadtree2),
+    /// See [`StructureKind::KdTree`].
+    KdTree(KdTree2),
+}
+
+/// Runs `$body` with `$s` bound to the concrete structure inside a [`Built`].
+macro_rules! with_structure {
+    ($built:expr, $s:ident => $body:expr) => {
+        match $built {
+            Built::BruteForce($s) => $body,
+            Built::SphereTree($s) => $body,
+            Built::AabbTree($s) => $body,
+            Built::ObbTree($s) => $body,
+            Built::Grid($s) => $body,
+            Built::Bsp($s) => $body,
+            Built::Quadtree($s) => $body,
+            Built::KdTree($s) => $body,
+        }
+    };
+}
+
+impl Built {
+    /// Builds the structure `settings` describe over `prims`.
+    pub fn build(prims: &[Segment2], settings: &BuildSettings) -> Self {
+        let bvh = BvhOptions {
+            method: settings.bvh_split,
+            max_leaf_size: settings.leaf_size.max(1),
+            sphere_fit: settings.sphere_fit,
+            ..BvhOptions::default()
+        };
+        match settings.kind {
+            StructureKind::BruteForce => Self::BruteForce(BruteForce::build(prims)),
+            StructureKind::SphereTree => Self::SphereTree(SphereTree2::with_options(prims, &bvh)),
+            StructureKind::AabbTree => Self::AabbTree(AabbTree2::with_options(prims, &bvh)),
+            StructureKind::ObbTree => Self::ObbTree(ObbTree2::with_options(prims, &bvh)),
+            StructureKind::Grid => {
+                let n = settings.grid_cells;
+                let options = GridOptions {
+                    resolution: (n > 0).then_some([n, n, 1]),
+                    ..GridOptions::default()
+                };
+                Self::Grid(Grid2::with_options(prims, options))
+            }
+            StructureKind::Bsp => {
+                let options = BspOptions {
+                    leaf_size: settings.leaf_size.max(1),
+                    ..BspOptions::default()
+                };
+                Self::Bsp(Bsp2::with_options(prims, &options))
+            }
+            StructureKind::Quadtree => {
+                let options = OrthtreeOptions {
+                    max_leaf_size: settings.leaf_size.max(1),
+                    max_depth: settings.quadtree_depth,
+                };
+                Self::Quadtree(Quadtree2::with_options(prims, options))
+            }
+            StructureKind::KdTree => {
+                let mut options = match settings.kd_split {
+                    KdSplit::MedianRoundRobin => KdTreeOptions::median(AxisRule::RoundRobin),
+                    KdSplit::MedianLongest => KdTreeOptions::median(AxisRule::LongestAxis),
+                    KdSplit::Sah => KdTreeOptions::sah(),
+                };
+                if !matches!(options.builder, KdBuilder::Sah(_)) {
+                    options.leaf_size = settings.leaf_size.max(1);
+                }
+                Self::KdTree(KdTree2::with_options(prims, &options))
+            }
+        }
+    }
+
+    /// The nodes, for drawing, indexed by the node ids events report.
+    pub fn outline(&self) -> Vec<NodeOutline<Vec2>> {
+        with_structure!(self, s => s.outline())
+    }
+
+    /// Node count, depth, references, SAH cost, memory.
+    pub fn stats(&self) -> Stats {
+        with_structure!(self, s => s.stats())
+    }
+
+    /// The first hit along `ray`, reporting each step to `observer`.
+    pub fn ray_first_hit<O: Observer<Vec2>>(
+        &self,
+        ray: &Ray2,
+        observer: &mut O,
+    ) -> Traced<Option<bvhlab::Hit>> {
+        with_structure!(self, s => s.ray_first_hit_observed(ray, f32::INFINITY, observer))
+    }
+
+    /// The `k` nearest primitives to `point`, reporting each step to `observer`.
+    pub fn k_nearest<O: Observer<Vec2>>(
+        &self,
+        point: Vec2,
+        k: usize,
+        observer: &mut O,
+    ) -> Traced<Vec<Nearest<Vec2>>> {
+        with_structure!(self, s => s.k_nearest_observed(point, k, observer))
+    }
+
+    /// The box around the structure's root (the scene's box), if it has one.
+    pub fn root_box(&self) -> Option<Aabb2> {
+        self.outline().first().map(|n| n.shape.aabb())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_kind_builds_and_answers_like_brute_force() {
+        let prims: Vec<Segment2> = (0..40)
+            .map(|i| {
+                let x = (i % 8) as f32 * 2.0;
+                let y = (i / 8) as f32 * 2.0;
+                Segment2::new(Vec2::new(x, y), Vec2::new(x + 1.0, y + 0.5))
+            })
+            .collect();
+        let ray = Ray2::through(Vec2::new(-1.0, 0.3), Vec2::new(20.0, 8.0)).expect("ray");
+        let reference = BruteForce::build(&prims).ray_first_hit(&ray, f32::INFINITY);
+        for kind in StructureKind::ALL {
+            let settings = BuildSettings {
+                kind,
+                ..BuildSettings::default()
+            };
+            let built = Built::build(&prims, &settings);
+            assert_eq!(
+                built.ray_first_hit(&ray, &mut ()).answer,
+                reference,
+                "{kind:?}"
+            );
+            assert_eq!(
+                built.outline().is_empty(),
+                kind == StructureKind::BruteForce
+            );
+        }
+    }
+}
