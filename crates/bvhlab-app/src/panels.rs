@@ -386,6 +386,10 @@ fn structure_section(app: &mut LabApp, ui: &mut egui::Ui) {
     if s.kind == StructureKind::Quadtree {
         ui.add(egui::Slider::new(&mut s.quadtree_depth, 1..=14).text("max depth"));
     }
+    structure_display(app, ui);
+}
+
+fn structure_display(app: &mut LabApp, ui: &mut egui::Ui) {
     let Some(built) = &app.built else { return };
     let stats = &built.stats;
     let d = &mut app.display;
@@ -444,7 +448,7 @@ fn structure_section(app: &mut LabApp, ui: &mut egui::Ui) {
             .allow_zoom(false)
             .allow_scroll(false)
             .show(ui, |plot| {
-                plot.bar_chart(egui_plot::BarChart::new("leaves", bars))
+                plot.bar_chart(egui_plot::BarChart::new("leaves", bars));
             });
     }
 }
@@ -459,62 +463,8 @@ fn query_section(app: &mut LabApp, ui: &mut egui::Ui) {
         }
         ui.add(egui::Slider::new(&mut app.k, 1..=8).text("k nearest"));
     });
-    if let Some(o) = &app.ray_outcome {
-        let e = o.ray.origin();
-        let d = o.ray.dir();
-        ui.label(format!(
-            "Ray e = ({:.2}, {:.2}), d = ({:.3}, {:.3})",
-            e.x, e.y, d.x, d.y
-        ));
-        match o.hit {
-            Some(h) => {
-                let p = o.ray.at(h.t);
-                let shape = app
-                    .built
-                    .as_ref()
-                    .and_then(|b| b.prims.owner.get(h.prim))
-                    .copied();
-                ui.label(
-                    RichText::new(format!(
-                        "Hit: primitive {} (shape {}) at t = {:.4}, point ({:.3}, {:.3})",
-                        h.prim,
-                        shape.map_or("?".to_owned(), |s| s.to_string()),
-                        h.t,
-                        p.x,
-                        p.y
-                    ))
-                    .color(colors::ANSWER),
-                );
-            }
-            None => {
-                ui.label("Miss: the ray hits nothing.");
-            }
-        }
-        counters(ui, "ray", o.cost, o.brute_cost, o.agrees());
-    }
-    if let Some(o) = &app.point_outcome {
-        ui.label(format!(
-            "Query point q = ({:.2}, {:.2})",
-            o.point.x, o.point.y
-        ));
-        for (rank, n) in o.nearest.iter().enumerate() {
-            ui.label(
-                RichText::new(format!(
-                    "#{}: primitive {} at distance {:.4}, closest point ({:.3}, {:.3})",
-                    rank + 1,
-                    n.prim,
-                    n.distance,
-                    n.point.x,
-                    n.point.y
-                ))
-                .color(colors::ANSWER),
-            );
-        }
-        if o.nearest.is_empty() {
-            ui.label("No primitives: nothing is nearest.");
-        }
-        counters(ui, "point", o.cost, o.brute_cost, o.agrees());
-    }
+    ray_answer(app, ui);
+    point_answer(app, ui);
     if app.ray_outcome.is_none() && app.point_outcome.is_none() {
         ui.label("Use the Ray tool or the Query point tool on the canvas.");
         return;
@@ -594,5 +544,67 @@ fn counters(
             RichText::new("✘ differs from brute force: please report this scene")
                 .color(colors::CULLED),
         );
+    }
+}
+
+fn ray_answer(app: &LabApp, ui: &mut egui::Ui) {
+    if let Some(o) = &app.ray_outcome {
+        let e = o.ray.origin();
+        let d = o.ray.dir();
+        ui.label(format!(
+            "Ray e = ({:.2}, {:.2}), d = ({:.3}, {:.3})",
+            e.x, e.y, d.x, d.y
+        ));
+        match o.hit {
+            Some(h) => {
+                let p = o.ray.at(h.t);
+                let shape = app
+                    .built
+                    .as_ref()
+                    .and_then(|b| b.prims.owner.get(h.prim))
+                    .copied();
+                ui.label(
+                    RichText::new(format!(
+                        "Hit: primitive {} (shape {}) at t = {:.4}, point ({:.3}, {:.3})",
+                        h.prim,
+                        shape.map_or("?".to_owned(), |s| s.to_string()),
+                        h.t,
+                        p.x,
+                        p.y
+                    ))
+                    .color(colors::ANSWER),
+                );
+            }
+            None => {
+                ui.label("Miss: the ray hits nothing.");
+            }
+        }
+        counters(ui, "ray", o.cost, o.brute_cost, o.agrees());
+    }
+}
+
+fn point_answer(app: &LabApp, ui: &mut egui::Ui) {
+    if let Some(o) = &app.point_outcome {
+        ui.label(format!(
+            "Query point q = ({:.2}, {:.2})",
+            o.point.x, o.point.y
+        ));
+        for (rank, n) in o.nearest.iter().enumerate() {
+            ui.label(
+                RichText::new(format!(
+                    "#{}: primitive {} at distance {:.4}, closest point ({:.3}, {:.3})",
+                    rank + 1,
+                    n.prim,
+                    n.distance,
+                    n.point.x,
+                    n.point.y
+                ))
+                .color(colors::ANSWER),
+            );
+        }
+        if o.nearest.is_empty() {
+            ui.label("No primitives: nothing is nearest.");
+        }
+        counters(ui, "point", o.cost, o.brute_cost, o.agrees());
     }
 }
