@@ -1,6 +1,8 @@
 //! What the student draws: segments, polylines, polygons and point clouds, and the
 //! primitives (segments; a point is a segment of length zero) the core builds structures on.
 
+use std::sync::atomic::{AtomicU64, Ordering};
+
 use bvhlab::Segment2;
 use bvhlab::glam::Vec2;
 
@@ -90,12 +92,20 @@ impl Shape {
     }
 }
 
-/// The scene: shapes in drawing order. Every change bumps [`Scene::revision`], so that
+/// The scene: shapes in drawing order. Every change gives it a new [`Scene::revision`], so that
 /// structures built on it know when to rebuild.
 #[derive(Clone, Debug, Default)]
 pub struct Scene {
     shapes: Vec<Shape>,
     revision: u64,
+}
+
+/// A revision no scene has had: revisions come from one counter, so that a structure or a
+/// cache keyed by the revision of one scene is never taken for another scene's (both the
+/// default scene and a freshly loaded preset would otherwise be revision 0).
+fn next_revision() -> u64 {
+    static NEXT: AtomicU64 = AtomicU64::new(1);
+    NEXT.fetch_add(1, Ordering::Relaxed)
 }
 
 /// The scene's primitives, and which shape each came from.
@@ -112,7 +122,7 @@ impl Scene {
     pub fn from_shapes(shapes: Vec<Shape>) -> Self {
         Self {
             shapes,
-            revision: 0,
+            revision: next_revision(),
         }
     }
 
@@ -121,7 +131,8 @@ impl Scene {
         &self.shapes
     }
 
-    /// Counts changes: equal revisions mean an equal scene.
+    /// Identifies this state of the scene: equal revisions mean an equal scene. Revisions are
+    /// unique across scenes (a new preset never reuses the one the structure was built on).
     pub fn revision(&self) -> u64 {
         self.revision
     }
@@ -129,7 +140,7 @@ impl Scene {
     /// Adds a shape; returns its index.
     pub fn add(&mut self, shape: Shape) -> usize {
         self.shapes.push(shape);
-        self.revision += 1;
+        self.revision = next_revision();
         self.shapes.len() - 1
     }
 
@@ -139,7 +150,7 @@ impl Scene {
             && p.is_finite()
         {
             shape.points.push(p);
-            self.revision += 1;
+            self.revision = next_revision();
         }
     }
 
@@ -150,13 +161,13 @@ impl Scene {
             i += 1;
             !indices.contains(&(i - 1))
         });
-        self.revision += 1;
+        self.revision = next_revision();
     }
 
     /// Removes every shape.
     pub fn clear(&mut self) {
         self.shapes.clear();
-        self.revision += 1;
+        self.revision = next_revision();
     }
 
     /// Moves shape `index` by `delta` (ignored when the move would leave finite numbers).
@@ -167,7 +178,7 @@ impl Scene {
             for p in &mut shape.points {
                 *p += delta;
             }
-            self.revision += 1;
+            self.revision = next_revision();
         }
     }
 
@@ -247,6 +258,14 @@ mod tests {
         assert!(err.contains("point 1"), "{err}");
         let err = Shape::new(ShapeKind::Polygon, vec![Vec2::ZERO, Vec2::X]).expect_err("short");
         assert!(err.contains("at least 3"), "{err}");
+    }
+
+    #[test]
+    fn new_scenes_never_share_a_revision() {
+        let shape = |x: f32| Shape::new(ShapeKind::Points, vec![Vec2::splat(x)]).expect("ok");
+        let a = Scene::from_shapes(vec![shape(0.0)]);
+        let b = Scene::from_shapes(vec![shape(1.0)]);
+        assert_ne!(a.revision(), b.revision());
     }
 
     #[test]
