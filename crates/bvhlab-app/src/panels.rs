@@ -205,7 +205,7 @@ fn ray_tests(app: &mut LabApp, fits: &crate::volumes::Fits, ui: &mut egui::Ui) {
             let q = ray_sphere(&fits.centroid, &ray);
             ui.label(format!(
                 "Ray-sphere (centroid sphere): a t² + b t + c = 0 with a = {:.3}, b = {:.3}, \
-                 c = {:.3}; discriminant {:.3} → {}.",
+                 c = {:.3}; discriminant {:.3}: {}.",
                 q.a,
                 q.b,
                 q.c,
@@ -510,7 +510,7 @@ fn query_section(app: &mut LabApp, ui: &mut egui::Ui) {
 }
 
 fn legend(ui: &mut egui::Ui, color: Color32, text: String) {
-    ui.label(RichText::new("■").color(color));
+    ui.label(RichText::new("•").color(color));
     ui.label(text);
 }
 
@@ -538,16 +538,20 @@ fn counters(
         }
     });
     if agrees {
-        ui.label(RichText::new("✔ same answer as brute force").color(colors::VISITED));
+        ui.label(RichText::new("Same answer as brute force.").color(colors::VISITED));
     } else {
         ui.label(
-            RichText::new("✘ differs from brute force: please report this scene")
+            RichText::new("Differs from brute force: please report this scene.")
                 .color(colors::CULLED),
         );
     }
 }
 
 fn ray_answer(app: &LabApp, ui: &mut egui::Ui) {
+    if let Some(Err(e)) = app.ray.map(|r| r.ray()) {
+        // e and s coincide (a drag that ended where it began): say why nothing is answered.
+        ui.label(format!("No ray: {e}. Drag s away from e."));
+    }
     if let Some(o) = &app.ray_outcome {
         let e = o.ray.origin();
         let d = o.ray.dir();
