@@ -1,0 +1,688 @@
+//! Headless UI tests of the lab (issue 4): the app driven as a student drives it, through the
+//! pointer, the keyboard and the widgets, with what the panels show checked against the core
+//! (the app's query outcomes, its scene, and a brute force run here on the scene's primitives).
+
+use bvhlab::glam::Vec2;
+use bvhlab::{Aabb2, BoundingVolume, BruteForce, Hit, Nearest, Ray2, SpatialIndex};
+use bvhlab_app::LabApp;
+use bvhlab_app::scene::ShapeKind;
+use bvhlab_app::structures::StructureKind;
+use bvhlab_app::tool::{Interaction, Tool};
+use egui::accesskit::Role;
+use egui::{Event, Key, Modifiers, PointerButton, Pos2, pos2, vec2};
+use egui_kittest::Harness;
+use egui_kittest::kittest::{NodeT, Queryable};
+
+/// A tall window, so that the whole control panel (down to the queries) is on screen.
+const WINDOW: egui::Vec2 = vec2(1400.0, 1800.0);
+
+/// The lab in a headless harness, after its first frames (the view is fitted to the scene).
+fn lab() -> Harness<'static, LabApp> {
+    let mut h = Harness::builder()
+        .with_size(WINDOW)
+        .build_ui_state(|ui, app: &mut LabApp| app.show(ui), LabApp::default());
+    h.run();
+    h
+}
+
+/// Runs until the UI settles, then one more frame: the control panel is drawn before the
+/// canvas, so a change the canvas made in the last frame shows in the panel one frame later.
+fn settle(h: &mut Harness<'_, LabApp>) {
+    h.run();
+    h.step();
+}
+
+/// The texts of every label on screen, in layout order.
+fn labels(h: &Harness<'_, LabApp>) -> Vec<String> {
+    h.query_all_by_role(Role::Label)
+        .filter_map(|n| n.accesskit_node().value())
+        .collect()
+}
+
+/// The one label containing `part`, or a failure listing what is shown.
+fn label_containing(h: &Harness<'_, LabApp>, part: &str) -> String {
+    let all = labels(h);
+    let found: Vec<&String> = all.iter().filter(|l| l.contains(part)).collect();
+    assert_eq!(
+        found.len(),
+        1,
+        "one label containing {part:?}; labels: {all:#?}"
+    );
+    found[0].clone()
+}
+
+/// Whether some label contains `part`.
+fn shows(h: &Harness<'_, LabApp>, part: &str) -> bool {
+    labels(h).iter().any(|l| l.contains(part))
+}
+
+/// The screen point of a world point.
+fn screen(h: &Harness<'_, LabApp>, p: Vec2) -> Pos2 {
+    h.state().view.to_screen(p)
+}
+
+/// The world point under a screen point.
+fn world(h: &Harness<'_, LabApp>, p: Pos2) -> Vec2 {
+    h.state().view.to_world(p)
+}
+
+/// A primary-button drag from `from` to `to`: press, eight moves (one frame each), release.
+fn drag(h: &mut Harness<'_, LabApp>, from: Pos2, to: Pos2) {
+    drag_path(h, from, &[to]);
+}
+
+/// A primary-button drag from `from` through `stops` (eight moves to each), released at the
+/// last stop.
+fn drag_path(h: &mut Harness<'_, LabApp>, from: Pos2, stops: &[Pos2]) {
+    assert!(
+        h.state().view.rect.contains(from),
+        "the drag starts on the canvas"
+    );
+    h.hover_at(from);
+    h.step();
+    h.drag_at(from);
+    h.step();
+    let mut at = from;
+    for &stop in stops {
+        for i in 1..=8 {
+            h.hover_at(at.lerp(stop, i as f32 / 8.0));
+            h.step();
+        }
+        at = stop;
+    }
+    h.drop_at(at);
+    settle(h);
+}
+
+/// A primary click at `p` (press and release at one point).
+fn click_at(h: &mut Harness<'_, LabApp>, p: Pos2) {
+    h.hover_at(p);
+    for pressed in [true, false] {
+        h.event(Event::PointerButton {
+            pos: p,
+            button: PointerButton::Primary,
+            pressed,
+            modifiers: Modifiers::NONE,
+        });
+    }
+    settle(h);
+}
+
+/// Clicks the widget labelled `label`.
+fn click(h: &mut Harness<'_, LabApp>, label: &str) {
+    h.get_by_label(label).click();
+    settle(h);
+}
+
+/// Opens the combo box labelled `combo` and picks `option` from it.
+fn choose(h: &mut Harness<'_, LabApp>, combo: &str, option: &str) {
+    click(h, combo);
+    click(h, option);
+}
+
+/// Presses a key.
+fn press(h: &mut Harness<'_, LabApp>, key: Key) {
+    h.key_press(key);
+    settle(h);
+}
+
+/// Brute force over the app's current scene, built here from the scene (not the app's copy).
+fn scene_brute(app: &LabApp) -> BruteForce<bvhlab::Segment2> {
+    BruteForce::build(&app.scene.primitives().segments)
+}
+
+/// The first hit of `ray` by brute force over the app's scene.
+fn brute_hit(app: &LabApp, ray: &Ray2) -> Option<Hit> {
+    scene_brute(app)
+        .ray_first_hit_observed(ray, f32::INFINITY, &mut ())
+        .answer
+}
+
+/// The `k` nearest primitives of `q` by brute force over the app's scene.
+fn brute_nearest(app: &LabApp, q: Vec2, k: usize) -> Vec<Nearest<Vec2>> {
+    scene_brute(app).k_nearest_observed(q, k, &mut ()).answer
+}
+
+/// The hit line the Queries panel shows for `hit` on `ray`.
+fn hit_text(app: &LabApp, ray: &Ray2, hit: Hit) -> String {
+    let p = ray.at(hit.t);
+    let shape = app.scene.primitives().owner[hit.prim];
+    format!(
+        "Hit: primitive {} (shape {shape}) at t = {:.4}, point ({:.3}, {:.3})",
+        hit.prim, hit.t, p.x, p.y
+    )
+}
+
+/// The ray and point counters grids: (name, structure, brute force) per row, ray first.
+fn counter_rows(h: &Harness<'_, LabApp>) -> Vec<(String, u64, u64)> {
+    let all = labels(h);
+    let mut rows = Vec::new();
+    for (i, l) in all.iter().enumerate() {
+        if ["nodes visited", "BV tests", "primitive tests"].contains(&l.as_str()) {
+            let n = |j: usize| {
+                all[i + j]
+                    .parse::<u64>()
+                    .unwrap_or_else(|e| panic!("{l}: {:?} is not a count ({e})", all[i + j]))
+            };
+            rows.push((l.clone(), n(1), n(2)));
+        }
+    }
+    rows
+}
+
+/// The "N shapes, M primitives" line.
+fn scene_line(shapes: usize, prims: usize) -> String {
+    format!("{shapes} shapes, {prims} primitives")
+}
+
+/// A screen point in the canvas's margin left of the default scene, `dy` points down.
+fn empty_margin(h: &Harness<'_, LabApp>, dy: f32) -> Pos2 {
+    let rect = h.state().view.rect;
+    let p = pos2(rect.left() + 20.0, rect.top() + 40.0 + dy);
+    let (lo, _) = LabApp::default().scene.bounds().expect("a scene");
+    assert!(world(h, p).x < lo.x, "the margin is left of the scene");
+    assert!(world(h, p + vec2(30.0, 0.0)).x < lo.x, "and wide enough");
+    p
+}
+
+/// Drags the default test ray across the default scene (world (0.5, 9.7) toward (20, 11.3)).
+fn drag_test_ray(h: &mut Harness<'_, LabApp>) -> Ray2 {
+    let from = screen(h, Vec2::new(0.5, 9.7));
+    let to = screen(h, Vec2::new(20.0, 11.3));
+    drag(h, from, to);
+    let expected = Ray2::through(world(h, from), world(h, to)).expect("a proper ray");
+    let handles = h.state().ray.expect("the drag placed a ray");
+    assert_eq!(
+        handles.ray().expect("valid"),
+        expected,
+        "the ray runs from the press to the release"
+    );
+    expected
+}
+
+#[test]
+fn start_up_and_a_dragged_ray_show_the_core_answer_and_its_cost() {
+    let mut h = lab();
+    // Start-up: the default scene, structure and tool, and the panels say so.
+    assert_eq!(h.state().scene.shapes().len(), 200);
+    assert_eq!(h.state().tool, Tool::Ray);
+    assert_eq!(h.state().settings.kind, StructureKind::AabbTree);
+    label_containing(&h, &scene_line(200, 200));
+    assert_eq!(
+        h.get_by_label("Structure").accesskit_node().value(),
+        Some("AABB tree".to_owned())
+    );
+    assert_eq!(
+        h.get_by_label("Preset").accesskit_node().value(),
+        Some("200 random segments".to_owned())
+    );
+    assert!(shows(
+        &h,
+        "Use the Ray tool or the Query point tool on the canvas."
+    ));
+    assert!(h.state().ray_outcome.is_none());
+
+    let ray = drag_test_ray(&mut h);
+    let app = h.state();
+    let outcome = app.ray_outcome.as_ref().expect("the ray was answered");
+    assert_eq!(outcome.ray, ray);
+    let hit = outcome.hit.expect("this ray crosses the scene");
+    assert_eq!(Some(hit), brute_hit(app, &ray), "the structure's hit");
+    assert_eq!(
+        label_containing(&h, "Hit: primitive"),
+        hit_text(app, &ray, hit)
+    );
+    let rows = counter_rows(&h);
+    assert_eq!(
+        rows,
+        vec![
+            (
+                "nodes visited".to_owned(),
+                outcome.cost.nodes_visited,
+                outcome.brute_cost.nodes_visited
+            ),
+            (
+                "BV tests".to_owned(),
+                outcome.cost.bound_tests,
+                outcome.brute_cost.bound_tests
+            ),
+            (
+                "primitive tests".to_owned(),
+                outcome.cost.prim_tests,
+                outcome.brute_cost.prim_tests
+            ),
+        ]
+    );
+    // Brute force tests every primitive; the tree fewer.
+    assert_eq!(outcome.brute_cost.prim_tests, 200);
+    assert!(outcome.cost.prim_tests < 200);
+    assert!(outcome.cost.nodes_visited > 0);
+    label_containing(&h, "Same answer as brute force.");
+    // The legend counts what the canvas marks.
+    label_containing(&h, &format!("visited {}", outcome.cost.nodes_visited));
+    label_containing(
+        &h,
+        &format!("primitives tested {}", outcome.cost.prim_tests),
+    );
+    // The report for the page agrees.
+    let report = app.report.query.as_ref().expect("reported");
+    assert_eq!(report.hit.as_ref().map(|r| r.primitive), Some(hit.prim));
+    assert!(report.agrees);
+
+    // Dragging the ray's target handle moves only the target.
+    let target = h.state().ray.expect("ray").target;
+    let new_target = Vec2::new(20.0, 4.0);
+    let (a, b) = (screen(&h, target), screen(&h, new_target));
+    drag(&mut h, a, b);
+    let handles = h.state().ray.expect("ray");
+    assert_eq!(handles.origin, ray.origin(), "the origin stays");
+    assert!((handles.target - new_target).length() < 1e-3, "{handles:?}");
+    let outcome = h.state().ray_outcome.as_ref().expect("answered");
+    let moved = handles.ray().expect("valid");
+    assert_eq!(outcome.ray, moved);
+    assert_eq!(outcome.hit, brute_hit(h.state(), &moved));
+}
+
+#[test]
+fn every_structure_from_the_combo_gives_brute_forces_first_hit() {
+    let mut h = lab();
+    let ray = drag_test_ray(&mut h);
+    let expected = brute_hit(h.state(), &ray).expect("this ray crosses the scene");
+    for kind in StructureKind::ALL {
+        choose(&mut h, "Structure", kind.label());
+        assert_eq!(h.state().settings.kind, kind, "the combo picked {kind:?}");
+        assert_eq!(
+            h.get_by_label("Structure").accesskit_node().value(),
+            Some(kind.label().to_owned())
+        );
+        let app = h.state();
+        assert_eq!(
+            app.built.as_ref().map(|b| b.settings.kind),
+            Some(kind),
+            "rebuilt"
+        );
+        let outcome = app.ray_outcome.as_ref().expect("answered");
+        assert_eq!(outcome.hit, Some(expected), "{kind:?}");
+        assert_eq!(
+            label_containing(&h, "Hit: primitive"),
+            hit_text(app, &ray, expected),
+            "{kind:?}"
+        );
+        label_containing(&h, "Same answer as brute force.");
+        let rows = counter_rows(&h);
+        assert_eq!(rows[2].1, outcome.cost.prim_tests, "{kind:?}");
+        assert_eq!(rows[2].2, 200, "{kind:?}");
+    }
+}
+
+#[test]
+fn drawing_segments_polygons_and_points() {
+    let mut h = lab();
+    // Segment: a drag in the empty margin adds one segment from the press to the release.
+    click(&mut h, "Segment");
+    assert_eq!(h.state().tool, Tool::Segment);
+    assert!(shows(&h, "Drag to draw a segment."));
+    let (a, b) = (empty_margin(&h, 0.0), empty_margin(&h, 200.0));
+    drag(&mut h, a, b);
+    let app = h.state();
+    assert_eq!(app.scene.shapes().len(), 201);
+    let seg = app.scene.shapes().last().expect("added");
+    assert_eq!(seg.kind, ShapeKind::Segment);
+    assert_eq!(seg.points, vec![world(&h, a), world(&h, b)]);
+    label_containing(&h, &scene_line(201, 201));
+
+    // Polygon: three clicks and Enter close a triangle with those corners.
+    click(&mut h, "Polygon");
+    let corners = [
+        empty_margin(&h, 300.0),
+        empty_margin(&h, 300.0) + vec2(30.0, 60.0),
+        empty_margin(&h, 380.0),
+    ];
+    for &c in &corners {
+        click_at(&mut h, c);
+    }
+    assert!(matches!(&h.state().interaction, Interaction::Chain(p) if p.len() == 3));
+    assert_eq!(h.state().scene.shapes().len(), 201, "not closed yet");
+    press(&mut h, Key::Enter);
+    let app = h.state();
+    assert_eq!(app.interaction, Interaction::None);
+    let polygon = app.scene.shapes().last().expect("added");
+    assert_eq!(polygon.kind, ShapeKind::Polygon);
+    let expected: Vec<Vec2> = corners.iter().map(|&c| world(&h, c)).collect();
+    assert_eq!(polygon.points, expected);
+    label_containing(&h, &scene_line(202, 204));
+
+    // Esc cancels a chain: nothing is added, and Enter afterwards adds nothing either.
+    click(&mut h, "Polyline");
+    let start = empty_margin(&h, 450.0);
+    click_at(&mut h, start);
+    click_at(&mut h, start + vec2(20.0, 40.0));
+    assert!(matches!(&h.state().interaction, Interaction::Chain(p) if p.len() == 2));
+    press(&mut h, Key::Escape);
+    assert_eq!(h.state().interaction, Interaction::None);
+    press(&mut h, Key::Enter);
+    assert_eq!(h.state().scene.shapes().len(), 202);
+    label_containing(&h, &scene_line(202, 204));
+
+    // Points: three clicks make one cloud of three points.
+    click(&mut h, "Points");
+    let dots = [
+        empty_margin(&h, 520.0),
+        empty_margin(&h, 560.0),
+        empty_margin(&h, 600.0),
+    ];
+    for &d in &dots {
+        click_at(&mut h, d);
+    }
+    let app = h.state();
+    assert_eq!(app.scene.shapes().len(), 203, "one cloud");
+    let cloud = app.scene.shapes().last().expect("added");
+    assert_eq!(cloud.kind, ShapeKind::Points);
+    let expected: Vec<Vec2> = dots.iter().map(|&d| world(&h, d)).collect();
+    assert_eq!(cloud.points, expected);
+    label_containing(&h, &scene_line(203, 207));
+}
+
+#[test]
+fn select_moves_and_deletes_a_shape() {
+    let mut h = lab();
+    click(&mut h, "Select / move");
+    assert_eq!(h.state().tool, Tool::Select);
+    // A shape whose midpoint picks it (no other shape is nearer there).
+    let grab = h.state().view.world_length(10.0);
+    let (index, mid) = {
+        let scene = &h.state().scene;
+        scene
+            .shapes()
+            .iter()
+            .enumerate()
+            .map(|(i, s)| (i, (s.points[0] + s.points[1]) * 0.5))
+            .find(|&(i, m)| {
+                scene.pick(m, grab) == Some(i)
+                    && scene
+                        .shapes()
+                        .iter()
+                        .enumerate()
+                        .all(|(j, s)| j == i || s.distance(m) > 2.0 * grab)
+            })
+            .expect("some shape stands alone")
+    };
+    let before = h.state().scene.shapes()[index].clone();
+
+    let at = screen(&h, mid);
+    click_at(&mut h, at);
+    assert_eq!(h.state().selection, vec![index]);
+    h.get_by_label("Delete selected (1)");
+
+    // Drag it 90 points right and 45 up: in world units, (90, 45) / scale.
+    let scale = h.state().view.scale;
+    let from = screen(&h, mid);
+    let to = from + vec2(90.0, -45.0);
+    drag_path(&mut h, from, &[from + vec2(30.0, 10.0), to]);
+    let after = h.state().scene.shapes()[index].clone();
+    let delta = Vec2::new(90.0, 45.0) / scale;
+    for (p, q) in before.points.iter().zip(&after.points) {
+        assert!(
+            (*q - (*p + delta)).length() < 1e-3,
+            "{p} moved to {q}, expected {}",
+            *p + delta
+        );
+    }
+    assert_eq!(h.state().selection, vec![index], "still selected");
+
+    // Delete removes it, and the status line says so.
+    press(&mut h, Key::Delete);
+    let app = h.state();
+    assert!(app.selection.is_empty());
+    assert_eq!(app.scene.shapes().len(), 199);
+    assert!(!app.scene.shapes().contains(&after));
+    label_containing(&h, "Removed 1 shape(s).");
+    label_containing(&h, &scene_line(199, 199));
+    h.get_by_label("Delete selected (0)");
+}
+
+#[test]
+fn query_point_shows_brute_forces_nearest_and_k_answers() {
+    let mut h = lab();
+    click(&mut h, "Query point");
+    assert_eq!(h.state().tool, Tool::Point);
+    let at = screen(&h, Vec2::new(7.3, 12.1));
+    click_at(&mut h, at);
+    let q = world(&h, at);
+    assert_eq!(h.state().point, Some(q));
+    let nearest = brute_nearest(h.state(), q, 1);
+    let n = nearest[0];
+    let line = label_containing(&h, "#1: primitive");
+    assert_eq!(
+        line,
+        format!(
+            "#1: primitive {} at distance {:.4}, closest point ({:.3}, {:.3})",
+            n.prim, n.distance, n.point.x, n.point.y
+        )
+    );
+    assert!(!shows(&h, "#2: primitive"));
+    label_containing(&h, "Same answer as brute force.");
+
+    // k = 3 through the slider (as a screen reader sets it).
+    h.get_by_role_and_label(Role::Slider, "k nearest")
+        .set_value_accesskit(3.0);
+    settle(&mut h);
+    assert_eq!(h.state().k, 3);
+    let nearest = brute_nearest(h.state(), q, 3);
+    assert_eq!(nearest.len(), 3);
+    for (rank, n) in nearest.iter().enumerate() {
+        let line = label_containing(&h, &format!("#{}: primitive", rank + 1));
+        assert!(
+            line.starts_with(&format!(
+                "#{}: primitive {} at distance {:.4}",
+                rank + 1,
+                n.prim,
+                n.distance
+            )),
+            "{line}"
+        );
+    }
+    assert!(!shows(&h, "#4: primitive"));
+    assert_eq!(
+        h.state().point_outcome.as_ref().map(|o| o.nearest.len()),
+        Some(3)
+    );
+}
+
+#[test]
+fn bounding_volumes_preset_fits_and_the_slab_tests_nan() {
+    let mut h = lab();
+    choose(&mut h, "Preset", "Bounding volumes compared (§2)");
+    let app = h.state();
+    assert_eq!(app.scene.shapes().len(), 1);
+    assert_eq!(app.selection, vec![0]);
+    label_containing(&h, &scene_line(1, 14));
+    assert_eq!(
+        app.built.as_ref().map(|b| b.prims.segments.len()),
+        Some(14),
+        "the structure is rebuilt on the preset's scene"
+    );
+
+    // The fits table: four columns after the header, one row per volume.
+    let all = labels(&h);
+    let start = all
+        .iter()
+        .position(|l| l == "tightness")
+        .expect("the fits table")
+        + 1;
+    let mut tightness = std::collections::HashMap::new();
+    for row in all[start..].chunks(4).take(6) {
+        let pct = row[3]
+            .strip_suffix(" %")
+            .and_then(|p| p.parse::<u32>().ok())
+            .unwrap_or_else(|| panic!("a tightness, got {row:?}"));
+        tightness.insert(row[0].clone(), pct);
+    }
+    assert_eq!(tightness.len(), 6, "{tightness:?}");
+    assert_eq!(tightness["convex hull"], 100);
+    for (name, pct) in &tightness {
+        if name != "convex hull" {
+            assert!(*pct < 100, "{name} at {pct} %");
+        }
+    }
+
+    // A ray across the blob, then the slab test and its degenerate case.
+    assert!(shows(&h, "Draw a ray (Ray tool) to run the ray tests."));
+    let from = screen(&h, Vec2::new(-9.0, -4.0));
+    let to = screen(&h, Vec2::new(8.0, 3.0));
+    drag(&mut h, from, to);
+    assert!(h.state().ray.is_some());
+    click(&mut h, "Slab test of the ray against the AABB");
+    assert!(h.state().display.slab_test);
+    assert!(!shows(&h, "0/0 = NaN"));
+    click(&mut h, "Ray parallel to x");
+    let r = h.state().ray.expect("ray");
+    assert_eq!(r.origin.y, r.target.y);
+    label_containing(&h, "the ray is parallel to the y slab");
+    click(&mut h, "…and on the slab line y = y_min");
+    let app = h.state();
+    let r = app.ray.expect("ray");
+    let aabb = Aabb2::from_points(&app.scene.vertices(&[]));
+    assert_eq!(r.origin.y, aabb.min.y);
+    label_containing(&h, "0/0 = NaN");
+    label_containing(&h, "The naive formula compares a NaN");
+    // The core's slab test still reports the ray touching the box, and the panel says hit.
+    let ray = r.ray().expect("valid");
+    assert!(aabb.ray_interval(&ray).is_some(), "the core: a hit");
+    assert!(label_containing(&h, "max(t_xmin, t_ymin)").ends_with(": hit."));
+    let outcome = app.ray_outcome.as_ref().expect("answered");
+    assert_eq!(outcome.hit, brute_hit(app, &ray));
+    assert!(outcome.agrees());
+}
+
+#[test]
+fn two_obbs_separate_and_overlap_as_dragged() {
+    let mut h = lab();
+    click(&mut h, "Two OBBs (SAT)");
+    assert_eq!(h.state().tool, Tool::Obb);
+    let pair = h.state().obb_pair.expect("the demo's boxes");
+    for axis in ["A face 0", "A face 1", "B face 0", "B face 1"] {
+        label_containing(&h, axis);
+    }
+    let overlap = "No axis separates them: the boxes overlap.";
+    let separate = "separates them: the boxes do not overlap";
+
+    // Box B onto box A: they overlap.
+    let (a, b) = (screen(&h, pair.a.center), screen(&h, pair.b.center));
+    drag(&mut h, b, a);
+    let moved = h.state().obb_pair.expect("pair");
+    assert!((moved.b.center - pair.a.center).length() < 1e-3);
+    assert_eq!(moved.a, pair.a, "box A stays");
+    label_containing(&h, overlap);
+
+    // Far away (250 points down): an axis separates them.
+    drag(&mut h, a, a + vec2(0.0, 250.0));
+    label_containing(&h, separate);
+    assert!(!shows(&h, overlap));
+    let far = h.state().obb_pair.expect("pair");
+    assert!(far.tests().iter().any(bvhlab::AxisTest::separates));
+
+    // And back: they overlap again.
+    drag(&mut h, a + vec2(0.0, 250.0), a);
+    label_containing(&h, overlap);
+    assert!(!shows(&h, separate));
+}
+
+#[test]
+fn degenerate_rays_and_an_empty_scene_get_messages_not_panics() {
+    let mut h = lab();
+    // A press and release at one point is a click: no ray, nothing broken.
+    let p = screen(&h, Vec2::new(5.0, 5.0));
+    click_at(&mut h, p);
+    assert!(h.state().ray.is_none());
+    assert!(h.state().ray_outcome.is_none());
+    assert_eq!(h.state().interaction, Interaction::None);
+
+    // A drag that comes back to where it started: a ray of zero length.
+    drag_path(&mut h, p, &[p + vec2(80.0, 30.0), p]);
+    let handles = h.state().ray.expect("the drag placed handles");
+    assert_eq!(handles.origin, handles.target);
+    let err = handles.ray().expect_err("zero length");
+    assert!(h.state().ray_outcome.is_none());
+    assert!(!shows(&h, "Hit: primitive"));
+    // Both the §2 ray tests and the Queries panel say why there is no answer.
+    let no_ray = format!("No ray: {err}");
+    assert_eq!(
+        labels(&h).iter().filter(|l| l.starts_with(&no_ray)).count(),
+        2,
+        "{:#?}",
+        labels(&h)
+    );
+    assert!(shows(&h, "Drag s away from e."));
+    // It can be dragged out again into a proper ray.
+    drag(&mut h, p, p + vec2(200.0, 10.0));
+    assert!(h.state().ray_outcome.is_some());
+
+    // Clear empties the scene; a ray then misses, with the counters at zero.
+    click(&mut h, "Clear");
+    assert!(h.state().scene.shapes().is_empty());
+    label_containing(&h, &scene_line(0, 0));
+    assert!(!shows(&h, "Hit: primitive"));
+    label_containing(&h, "Miss: the ray hits nothing.");
+    drag(&mut h, p + vec2(0.0, 100.0), p + vec2(300.0, 60.0));
+    label_containing(&h, "Miss: the ray hits nothing.");
+    let outcome = h.state().ray_outcome.as_ref().expect("answered");
+    assert_eq!(outcome.hit, None);
+    assert_eq!(outcome.brute_cost.prim_tests, 0);
+    label_containing(&h, "Same answer as brute force.");
+    assert!(shows(&h, "Draw or select a shape to fit volumes to it."));
+    // A zero-length ray on the empty scene: still a message (only the Queries panel's now).
+    let q = p + vec2(0.0, 200.0);
+    drag_path(&mut h, q, &[q + vec2(50.0, 50.0), q]);
+    assert!(h.state().ray_outcome.is_none());
+    label_containing(&h, &no_ray);
+    assert!(!shows(&h, "Miss: the ray hits nothing."));
+    drag(&mut h, q, q + vec2(300.0, -40.0));
+    label_containing(&h, "Miss: the ray hits nothing.");
+
+    // A query point and the other structures on the empty scene.
+    click(&mut h, "Query point");
+    click_at(&mut h, p);
+    label_containing(&h, "No primitives: nothing is nearest.");
+    for kind in StructureKind::ALL {
+        choose(&mut h, "Structure", kind.label());
+        assert_eq!(h.state().settings.kind, kind);
+        label_containing(&h, "Miss: the ray hits nothing.");
+    }
+}
+
+#[test]
+fn ten_thousand_segments_from_the_preset_menu() {
+    let mut h = lab();
+    choose(&mut h, "Preset", "10,000 random segments");
+    assert_eq!(h.state().scene.shapes().len(), 10_000);
+    label_containing(&h, &scene_line(10_000, 10_000));
+    assert_eq!(
+        h.state().built.as_ref().map(|b| b.prims.segments.len()),
+        Some(10_000),
+        "the structure is rebuilt on the new scene"
+    );
+    let from = screen(&h, Vec2::new(2.0, 37.0));
+    let to = screen(&h, Vec2::new(98.0, 61.0));
+    drag(&mut h, from, to);
+    let app = h.state();
+    let ray = app.ray.expect("ray").ray().expect("valid");
+    let outcome = app.ray_outcome.as_ref().expect("answered");
+    let hit = outcome.hit.expect("a ray across 10,000 segments hits");
+    assert_eq!(Some(hit), brute_hit(app, &ray));
+    assert_eq!(
+        label_containing(&h, "Hit: primitive"),
+        hit_text(app, &ray, hit)
+    );
+    label_containing(&h, "Same answer as brute force.");
+    let rows = counter_rows(&h);
+    assert_eq!(
+        rows[2],
+        (
+            "primitive tests".to_owned(),
+            outcome.cost.prim_tests,
+            10_000
+        )
+    );
+    assert!(outcome.cost.prim_tests < 1_000, "{:?}", outcome.cost);
+}
