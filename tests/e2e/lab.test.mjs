@@ -56,9 +56,11 @@ const WEBGPU_ARGS = [
 ];
 
 const RUNS = [
-  { renderer: 'WebGPU', args: [...BASE_ARGS, ...WEBGPU_ARGS] },
+  { renderer: 'WebGPU', label: 'WebGPU', args: [...BASE_ARGS, ...WEBGPU_ARGS] },
   // Plain headless has no WebGPU adapter: the app falls back to WebGL2 by itself.
-  { renderer: 'WebGL2', args: BASE_ARGS },
+  { renderer: 'WebGL2', label: 'WebGL2', args: BASE_ARGS },
+  // The 10,000-segment preset (issue 4's smoothness figure), opened through the address.
+  { renderer: 'WebGPU', label: 'WebGPU-10k', search: '?preset=10k', primitives: 10000, args: [...BASE_ARGS, ...WEBGPU_ARGS] },
 ];
 
 class Failure extends Error {}
@@ -193,9 +195,9 @@ async function screenshot(page, name) {
   return { path, png: decode(buffer) };
 }
 
-async function runOne({ renderer, args }) {
+async function runOne({ renderer, label, search = '', primitives, args }) {
   for (const stale of ['start', 'ray', 'failure']) {
-    rmSync(join(outDir, `${renderer}-${stale}.png`), { force: true });
+    rmSync(join(outDir, `${label}-${stale}.png`), { force: true });
   }
   const profile = mkdtempSync(join(tmpdir(), 'bvhlab-e2e-'));
   const problems = [];
@@ -206,7 +208,7 @@ async function runOne({ renderer, args }) {
     viewport: VIEWPORT,
     deviceScaleFactor: 1,
   });
-  const summary = { renderer };
+  const summary = { renderer, label };
   try {
     const page = context.pages()[0] ?? (await context.newPage());
     page.setDefaultTimeout(READY_TIMEOUT_MS);
@@ -226,7 +228,7 @@ async function runOne({ renderer, args }) {
 
     // 1. Start: the report says ready, on the expected renderer.
     const started = Date.now();
-    await page.goto(url, { waitUntil: 'load' });
+    await page.goto(url + search, { waitUntil: 'load' });
     const { report, text } = await waitForReport(page, (r) => r.ready === true, READY_TIMEOUT_MS, 'ready report');
     summary.readyMs = Date.now() - started;
     check(
@@ -240,6 +242,10 @@ async function runOne({ renderer, args }) {
       `the drawing area ${JSON.stringify(report.canvas)} is not a sizeable part of the ${VIEWPORT.width}x${VIEWPORT.height} page`,
     );
     check(report.scene?.primitives > 0, `the starting scene has no primitives: ${JSON.stringify(report.scene)}`);
+    check(
+      primitives === undefined || report.scene.primitives === primitives,
+      `expected ${primitives} primitives for ${search}, the report says ${report.scene.primitives}`,
+    );
     check(report.structure === 'AABB tree', `structure: expected "AABB tree", got ${JSON.stringify(report.structure)}`);
     check(text && text.trim().length > 0, '#lab-status has no text for screen readers');
     summary.scene = report.scene;
@@ -247,12 +253,12 @@ async function runOne({ renderer, args }) {
 
     // 2. The first picture is not blank.
     await frames(page, 3);
-    const start = await screenshot(page, `${renderer}-start.png`);
+    const start = await screenshot(page, `${label}-start.png`);
     const rect = pixelRect(start.png, report.canvas);
     const stats = colourStats(start.png, rect);
     summary.colours = stats.distinct;
     check(
-      stats.distinct >= 32 && stats.dominantShare < 0.995,
+      stats.distinct >= 8 && stats.dominantShare < 0.98,
       `the drawing area looks blank: ${stats.distinct} colours, the most common covers ` +
         `${(stats.dominantShare * 100).toFixed(1)}% (${show(start.path)})`,
     );
@@ -304,6 +310,7 @@ async function runOne({ renderer, args }) {
     const q = answered.query;
     summary.query = q;
     summary.frameMs = answered.frame_ms;
+    summary.cpuMs = answered.cpu_ms;
     check(q.kind === 'ray', `query.kind: expected "ray", got ${JSON.stringify(q.kind)}`);
     check(
       Number.isInteger(q.hit.primitive) && q.hit.primitive >= 0 && q.hit.primitive < answered.scene.primitives,
@@ -317,7 +324,7 @@ async function runOne({ renderer, args }) {
     check(q.agrees === true, `the AABB tree's answer differs from brute force's: ${JSON.stringify(q)}`);
 
     // 5. The ray is drawn: the picture changed along the drag line.
-    const ray = await screenshot(page, `${renderer}-ray.png`);
+    const ray = await screenshot(page, `${label}-ray.png`);
     const along = changesAlong(start.png, ray.png, a, b);
     summary.changedAlongRay = along;
     check(
@@ -332,7 +339,7 @@ async function runOne({ renderer, args }) {
   } catch (error) {
     const pages = context.pages();
     if (pages.length > 0) {
-      await pages[0].screenshot({ path: join(outDir, `${renderer}-failure.png`) }).catch(() => {});
+      await pages[0].screenshot({ path: join(outDir, `${label}-failure.png`) }).catch(() => {});
     }
     if (problems.length > 0 && !(error instanceof Failure && error.message.startsWith('the page reported'))) {
       error.message += `\n  the page also reported:\n  ${problems.join('\n  ')}`;
@@ -346,7 +353,7 @@ async function runOne({ renderer, args }) {
 }
 
 function describe(s) {
-  const lines = [`${s.renderer}: ready in ${seconds(s.readyMs)}, ${s.scene.primitives} primitives, ${s.structure}, ${s.colours} colours at start`];
+  const lines = [`${s.label} (${s.renderer}): ready in ${seconds(s.readyMs)}, ${s.scene.primitives} primitives, ${s.structure}, ${s.colours} colours at start`];
   const q = s.query;
   lines.push(
     `  ray: hit primitive ${q.hit.primitive} at t = ${q.hit.t.toFixed(3)}` +
@@ -360,6 +367,7 @@ function describe(s) {
   lines.push(
     `  frame rate while dragging: ${s.fps.toFixed(1)} frames/s over ${seconds(s.dragMs)} (${s.moves} mouse moves)` +
       (s.frameMs != null ? `; the lab's median frame time: ${Number(s.frameMs).toFixed(1)} ms` : '') +
+      (s.cpuMs != null ? `, of which CPU (UI, tessellation, draw calls): ${Number(s.cpuMs).toFixed(1)} ms` : '') +
       ' (software rendering; not asserted)',
   );
   lines.push(`  ray drawn along ${s.changedAlongRay.changed} of ${s.changedAlongRay.samples} samples of the drag line`);
@@ -375,11 +383,11 @@ for (const run of RUNS) {
     const summary = await runOne(run);
     passed++;
     results.push(summary);
-    console.log(`ok ${run.renderer}`);
+    console.log(`ok ${run.label}`);
     console.log(describe(summary));
   } catch (error) {
     failed++;
-    console.log(`FAILED ${run.renderer}: ${error instanceof Failure ? error.message : error.stack}`);
+    console.log(`FAILED ${run.label}: ${error instanceof Failure ? error.message : error.stack}`);
   }
 }
 writeFileSync(join(outDir, 'summary.json'), `${JSON.stringify(results, null, 2)}\n`);

@@ -171,11 +171,13 @@ pub struct LabApp {
     pub report: Report,
     /// The selection's bounding volumes, keyed by scene revision and selection.
     pub fits_cache: Option<(FitsKey, Option<crate::volumes::Fits>)>,
+    /// The structure and scene, tessellated for the current view.
+    pub static_layer: Option<crate::canvas::StaticLayer>,
 }
 
 impl Default for LabApp {
     fn default() -> Self {
-        let preset = Preset::RandomSegments;
+        let preset = Preset::default();
         let (scene, settings) = preset.build();
         Self {
             scene,
@@ -202,11 +204,19 @@ impl Default for LabApp {
             renderer: None,
             report: Report::default(),
             fits_cache: None,
+            static_layer: None,
         }
     }
 }
 
 impl LabApp {
+    /// The lab opened on a preset scene.
+    pub fn with_preset(preset: Preset) -> Self {
+        let mut app = Self::default();
+        app.load_preset(preset);
+        app
+    }
+
     /// Replaces the scene with a preset and frames it.
     pub fn load_preset(&mut self, preset: Preset) {
         let (scene, settings) = preset.build();
@@ -309,6 +319,9 @@ impl eframe::App for LabApp {
     fn ui(&mut self, ui: &mut egui::Ui, frame: &mut eframe::Frame) {
         if self.renderer.is_none() {
             self.renderer = Some(renderer_name(frame));
+        }
+        if let Some(seconds) = frame.info().cpu_usage {
+            self.clock.record_cpu(f64::from(seconds) * 1e3);
         }
         self.show(ui);
         #[cfg(target_arch = "wasm32")]

@@ -9,8 +9,12 @@ use crate::app::{LabApp, RayHandles};
 use crate::paint::{WorldPainter, clipped_plane, colors};
 use crate::query::NodeMark;
 use crate::scene::{Shape, ShapeKind};
+use crate::structures::StructureKind;
 use crate::tool::{BoxGrip, Interaction, RayEnd, Tool};
 use crate::volumes::{Fits, ObbPair, SlabExplain};
+
+/// The most shapes the static layer anti-aliases (see [`tessellate`]).
+const FEATHERING_LIMIT: usize = 4000;
 
 /// How close (in screen points) a press must be to grab a handle or pick a shape.
 const GRAB: f32 = 10.0;
@@ -334,66 +338,173 @@ fn leaf_colour(leaf: u32) -> Color32 {
     egui::ecolor::Hsva::new(hue, 0.65, 0.95, 1.0).into()
 }
 
+/// What the static layer was drawn for: when none of it changes (while a ray or a query
+/// point is dragged), the cached mesh is reused.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LayerKey {
+    revision: u64,
+    settings: crate::structures::BuildSettings,
+    view: crate::view::View,
+    display: crate::app::Display,
+    selection: Vec<usize>,
+    pixels_per_point: f32,
+}
+
+/// The structure's nodes and the scene's primitives, tessellated once into one mesh and
+/// reused while only the queries change, so that a frame during a ray drag costs about the
+/// same with 10 or 10,000 segments.
+pub struct StaticLayer {
+    key: LayerKey,
+    mesh: std::sync::Arc<egui::Mesh>,
+}
+
 fn draw(app: &mut LabApp, painter: &egui::Painter, hover: Option<egui::Pos2>) {
     let view = app.view;
-    let wp = WorldPainter {
-        painter,
-        view: &view,
+    let key = LayerKey {
+        revision: app.scene.revision(),
+        settings: app.settings,
+        view,
+        display: app.display,
+        selection: app.selection.clone(),
+        pixels_per_point: painter.ctx().pixels_per_point(),
     };
-    draw_structure(app, &wp);
-    draw_scene(app, &wp);
-    if app.display.volumes || app.display.slab_test {
-        draw_volumes(app, &wp);
+    if app.static_layer.as_ref().is_none_or(|l| l.key != key) {
+        let mut wp = WorldPainter::new(&view);
+        draw_structure(app, &mut wp);
+        draw_scene(app, &mut wp);
+        let mesh = tessellate(painter.ctx(), wp.shapes, view.rect);
+        app.static_layer = Some(StaticLayer {
+            key,
+            mesh: std::sync::Arc::new(mesh),
+        });
     }
-    draw_queries(app, &wp);
+    if let Some(layer) = &app.static_layer {
+        painter.add(egui::Shape::Mesh(layer.mesh.clone()));
+    }
+    let mut wp = WorldPainter::new(&view);
+    draw_marks(app, &mut wp);
+    if app.display.volumes || app.display.slab_test {
+        draw_volumes(app, &mut wp);
+    }
+    draw_queries(app, &mut wp, painter);
     if app.tool == Tool::Obb
         && let Some(pair) = &app.obb_pair
     {
-        draw_obb_pair(pair, &wp);
+        draw_obb_pair(pair, &mut wp);
     }
-    draw_in_progress(app, &wp, hover.map(|h| app.view.to_world(h)));
+    draw_in_progress(app, &mut wp, hover.map(|h| view.to_world(h)));
+    painter.extend(wp.shapes);
 }
 
-fn draw_structure(app: &LabApp, wp: &WorldPainter<'_>) {
+/// Tessellates `shapes` into one mesh, culled to `clip`, as egui would each frame.
+///
+/// Above [`FEATHERING_LIMIT`] shapes the edges are not anti-aliased: feathering doubles the
+/// vertices, and egui copies and uploads every vertex each frame.
+fn tessellate(ctx: &egui::Context, shapes: Vec<egui::Shape>, clip: egui::Rect) -> egui::Mesh {
+    let mut options = ctx.tessellation_options(|o| *o);
+    options.feathering &= shapes.len() <= FEATHERING_LIMIT;
+    let mut tessellator =
+        egui::epaint::Tessellator::new(ctx.pixels_per_point(), options, [1, 1], Vec::new());
+    tessellator.set_clip_rect(clip);
+    let mut mesh = egui::Mesh::default();
+    for shape in shapes {
+        tessellator.tessellate_shape(shape, &mut mesh);
+    }
+    mesh
+}
+
+fn draw_structure(app: &LabApp, wp: &mut WorldPainter<'_>) {
     let Some(built) = &app.built else { return };
-    let marks = app.marks.as_ref().filter(|_| app.display.query_marks);
-    if app.display.structure {
-        let stroke = Stroke::new(1.0, colors::STRUCTURE);
-        for node in &built.outline {
-            if node.depth > app.display.max_depth {
-                continue;
-            }
+    if !app.display.structure {
+        return;
+    }
+    let stroke = Stroke::new(1.0, colors::STRUCTURE);
+    let split_stroke = Stroke::new(1.0, colors::STRUCTURE.gamma_multiply(1.6));
+    if app.settings.kind == StructureKind::Grid {
+        draw_grid_lines(&built.outline, wp, stroke);
+        return;
+    }
+    // Space partitions (k-d tree, quadtree, BSP tree): the cells are what the splits cut out
+    // of the root's box, so the root box and the split lines draw them all. BVHs draw every
+    // node's volume.
+    let space = !app.settings.kind.is_bvh();
+    for node in &built.outline {
+        if node.depth > app.display.max_depth {
+            continue;
+        }
+        if !space || node.parent.is_none() {
             wp.node_shape(&node.shape, stroke);
-            if node.splits.is_empty() {
-                continue;
-            }
-            let region = node.shape.aabb();
-            let clip = ancestor_half_planes(&built.outline, node.id);
-            for split in &node.splits {
-                if let Some((a, b)) = clipped_plane(split.normal, split.offset, &region, &clip) {
-                    wp.line(
-                        a,
-                        b,
-                        Stroke::new(1.5, colors::STRUCTURE.gamma_multiply(1.6)),
-                    );
-                }
+        }
+        if node.splits.is_empty() || node.depth >= app.display.max_depth {
+            continue;
+        }
+        let region = node.shape.aabb();
+        let clip = ancestor_half_planes(&built.outline, node.id);
+        for split in &node.splits {
+            if let Some((a, b)) = clipped_plane(split.normal, split.offset, &region, &clip) {
+                wp.line(a, b, split_stroke);
             }
         }
     }
-    if let Some(marks) = marks {
-        for (i, mark) in marks.nodes.iter().enumerate() {
-            let Some(mark) = mark else { continue };
-            let node = &built.outline[i];
-            if node.depth > app.display.max_depth {
-                continue;
+}
+
+/// A uniform grid as lines: one per cell boundary across the whole grid.
+fn draw_grid_lines(cells: &[bvhlab::NodeOutline<Vec2>], wp: &mut WorldPainter<'_>, stroke: Stroke) {
+    let boxes: Vec<Aabb2> = cells.iter().map(|c| c.shape.aabb()).collect();
+    let Some(bounds) = boxes.iter().copied().reduce(|a, b| a.merge(&b)) else {
+        return;
+    };
+    let mut xs: Vec<f32> = boxes.iter().flat_map(|b| [b.min.x, b.max.x]).collect();
+    let mut ys: Vec<f32> = boxes.iter().flat_map(|b| [b.min.y, b.max.y]).collect();
+    for v in [&mut xs, &mut ys] {
+        v.sort_by(f32::total_cmp);
+        v.dedup();
+    }
+    for x in xs {
+        wp.line(
+            Vec2::new(x, bounds.min.y),
+            Vec2::new(x, bounds.max.y),
+            stroke,
+        );
+    }
+    for y in ys {
+        wp.line(
+            Vec2::new(bounds.min.x, y),
+            Vec2::new(bounds.max.x, y),
+            stroke,
+        );
+    }
+}
+
+/// The nodes the query visited, culled and pruned, and the primitives it tested.
+fn draw_marks(app: &LabApp, wp: &mut WorldPainter<'_>) {
+    let (Some(built), Some(marks)) = (&app.built, &app.marks) else {
+        return;
+    };
+    if !app.display.query_marks {
+        return;
+    }
+    for (i, mark) in marks.nodes.iter().enumerate() {
+        let Some(mark) = mark else { continue };
+        let node = &built.outline[i];
+        if node.depth > app.display.max_depth {
+            continue;
+        }
+        let color = match mark {
+            NodeMark::Visited => colors::VISITED,
+            NodeMark::Culled => colors::CULLED,
+            NodeMark::Pruned => colors::PRUNED,
+        };
+        wp.node_fill(&node.shape, color.gamma_multiply(0.08));
+        wp.node_shape(&node.shape, Stroke::new(1.5, color));
+    }
+    for &(p, _) in &marks.tested {
+        if let Some(s) = built.prims.segments.get(p as usize) {
+            if s.a == s.b {
+                wp.dot(s.a, 3.5, colors::TESTED);
+            } else {
+                wp.line(s.a, s.b, Stroke::new(2.5, colors::TESTED));
             }
-            let color = match mark {
-                NodeMark::Visited => colors::VISITED,
-                NodeMark::Culled => colors::CULLED,
-                NodeMark::Pruned => colors::PRUNED,
-            };
-            wp.node_fill(&node.shape, color.gamma_multiply(0.08));
-            wp.node_shape(&node.shape, Stroke::new(1.5, color));
         }
     }
 }
@@ -419,7 +530,7 @@ fn ancestor_half_planes(
     out
 }
 
-fn draw_scene(app: &LabApp, wp: &WorldPainter<'_>) {
+fn draw_scene(app: &LabApp, wp: &mut WorldPainter<'_>) {
     let built = app.built.as_ref();
     let leaf_colours = app.display.leaf_colours && built.is_some();
     let mut prim = 0usize;
@@ -443,20 +554,6 @@ fn draw_scene(app: &LabApp, wp: &WorldPainter<'_>) {
             prim += 1;
         }
     }
-    // The primitives the query tested exactly.
-    if let (Some(marks), Some(built)) = (app.marks.as_ref(), built)
-        && app.display.query_marks
-    {
-        for &(p, _) in &marks.tested {
-            if let Some(s) = built.prims.segments.get(p as usize) {
-                if s.a == s.b {
-                    wp.dot(s.a, 3.5, colors::TESTED);
-                } else {
-                    wp.line(s.a, s.b, Stroke::new(2.5, colors::TESTED));
-                }
-            }
-        }
-    }
 }
 
 /// The far end of the ray on screen: where it leaves the visible part of the world.
@@ -470,7 +567,7 @@ fn visible_end(ray: &Ray2, view: &crate::view::View) -> Vec2 {
     ray.at(t)
 }
 
-fn draw_queries(app: &LabApp, wp: &WorldPainter<'_>) {
+fn draw_queries(app: &LabApp, wp: &mut WorldPainter<'_>, fonts: &egui::Painter) {
     if let Some(handles) = app.ray {
         if let Ok(ray) = handles.ray() {
             let end = visible_end(&ray, wp.view);
@@ -484,13 +581,9 @@ fn draw_queries(app: &LabApp, wp: &WorldPainter<'_>) {
             }
         }
         wp.dot(handles.origin, 5.0, colors::QUERY);
-        wp.text(handles.origin, " e", colors::QUERY);
-        wp.painter.circle_stroke(
-            wp.view.to_screen(handles.target),
-            5.0,
-            Stroke::new(2.0, colors::QUERY),
-        );
-        wp.text(handles.target, " s", colors::QUERY);
+        wp.text(fonts, handles.origin, " e", colors::QUERY);
+        wp.ring(handles.target, 5.0, Stroke::new(2.0, colors::QUERY));
+        wp.text(fonts, handles.target, " s", colors::QUERY);
     }
     if let Some(outcome) = &app.point_outcome {
         for (rank, n) in outcome.nearest.iter().enumerate() {
@@ -500,20 +593,21 @@ fn draw_queries(app: &LabApp, wp: &WorldPainter<'_>) {
         }
         if let Some(best) = outcome.nearest.last() {
             // The ball of the current minimum: nothing outside it can be nearer.
-            wp.painter.circle_stroke(
-                wp.view.to_screen(outcome.point),
-                wp.view.screen_length(best.distance),
+            let radius = wp.view.screen_length(best.distance);
+            wp.ring(
+                outcome.point,
+                radius,
                 Stroke::new(1.0, colors::ANSWER.gamma_multiply(0.6)),
             );
         }
     }
     if let Some(p) = app.point {
         wp.dot(p, 5.0, colors::QUERY);
-        wp.text(p, " q", colors::QUERY);
+        wp.text(fonts, p, " q", colors::QUERY);
     }
 }
 
-fn draw_volumes(app: &mut LabApp, wp: &WorldPainter<'_>) {
+fn draw_volumes(app: &mut LabApp, wp: &mut WorldPainter<'_>) {
     let Some(fits) = app.fits() else { return };
     let t = &app.volume_toggles;
     if app.display.volumes {
@@ -562,7 +656,7 @@ fn draw_volumes(app: &mut LabApp, wp: &WorldPainter<'_>) {
     }
 }
 
-fn draw_slab_test(aabb: &Aabb2, ray: &Ray2, wp: &WorldPainter<'_>) {
+fn draw_slab_test(aabb: &Aabb2, ray: &Ray2, wp: &mut WorldPainter<'_>) {
     if aabb.is_empty() {
         return;
     }
@@ -598,7 +692,7 @@ fn draw_slab_test(aabb: &Aabb2, ray: &Ray2, wp: &WorldPainter<'_>) {
     }
 }
 
-fn draw_obb_pair(pair: &ObbPair, wp: &WorldPainter<'_>) {
+fn draw_obb_pair(pair: &ObbPair, wp: &mut WorldPainter<'_>) {
     let tests = pair.tests();
     let separating = tests.iter().find(|t| t.separates());
     let color = if separating.is_some() {
@@ -622,24 +716,25 @@ fn draw_obb_pair(pair: &ObbPair, wp: &WorldPainter<'_>) {
     for (k, test) in shown.iter().enumerate() {
         let axis = test.axis.normalize_or_zero();
         let base = mid - axis * axis.dot(mid) + axis.perp() * (reach + 0.6 * k as f32 + 0.5);
-        let line = |(lo, hi): (f32, f32), shift: f32, c: Color32| {
-            wp.line(
-                base + axis * lo + axis.perp() * shift,
-                base + axis * hi + axis.perp() * shift,
-                Stroke::new(4.0, c),
-            );
-        };
         wp.line(
             base + axis * (axis.dot(mid) - reach * 1.5),
             base + axis * (axis.dot(mid) + reach * 1.5),
             Stroke::new(1.0, Color32::GRAY),
         );
-        line(test.interval_a, 0.12, Color32::from_rgb(255, 200, 120));
-        line(test.interval_b, -0.12, Color32::from_rgb(120, 200, 255));
+        for ((lo, hi), shift, c) in [
+            (test.interval_a, 0.12, Color32::from_rgb(255, 200, 120)),
+            (test.interval_b, -0.12, Color32::from_rgb(120, 200, 255)),
+        ] {
+            wp.line(
+                base + axis * lo + axis.perp() * shift,
+                base + axis * hi + axis.perp() * shift,
+                Stroke::new(4.0, c),
+            );
+        }
     }
 }
 
-fn draw_in_progress(app: &LabApp, wp: &WorldPainter<'_>, hover: Option<Vec2>) {
+fn draw_in_progress(app: &LabApp, wp: &mut WorldPainter<'_>, hover: Option<Vec2>) {
     let stroke = Stroke::new(1.5, colors::SELECTED);
     match &app.interaction {
         Interaction::Segment(a) => {

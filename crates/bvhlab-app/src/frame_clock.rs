@@ -10,6 +10,7 @@ use web_time::Instant;
 pub struct FrameClock {
     last: Option<Instant>,
     intervals_ms: VecDeque<f64>,
+    cpu_ms: VecDeque<f64>,
 }
 
 /// How many intervals the clock keeps.
@@ -31,20 +32,39 @@ impl FrameClock {
         self.last = Some(now);
     }
 
+    /// Records the CPU time the previous frame took (the lab's UI, tessellation and issuing
+    /// the draw calls, as eframe measures it), in milliseconds. Unlike the interval between
+    /// frames it leaves out the rasterisation, which a software renderer does on the CPU.
+    pub fn record_cpu(&mut self, ms: f64) {
+        if self.cpu_ms.len() == WINDOW {
+            self.cpu_ms.pop_front();
+        }
+        self.cpu_ms.push_back(ms);
+    }
+
     /// The median frame interval in milliseconds, over the last frames.
     pub fn median_ms(&self) -> Option<f64> {
-        let mut v: Vec<f64> = self.intervals_ms.iter().copied().collect();
-        if v.is_empty() {
-            return None;
-        }
-        v.sort_by(f64::total_cmp);
-        Some(v[v.len() / 2])
+        median(&self.intervals_ms)
+    }
+
+    /// The median CPU time per frame in milliseconds, over the last frames.
+    pub fn median_cpu_ms(&self) -> Option<f64> {
+        median(&self.cpu_ms)
     }
 
     /// Frames per second from the median interval.
     pub fn fps(&self) -> Option<f64> {
         self.median_ms().filter(|&ms| ms > 0.0).map(|ms| 1e3 / ms)
     }
+}
+
+fn median(values: &VecDeque<f64>) -> Option<f64> {
+    let mut v: Vec<f64> = values.iter().copied().collect();
+    if v.is_empty() {
+        return None;
+    }
+    v.sort_by(f64::total_cmp);
+    Some(v[v.len() / 2])
 }
 
 #[cfg(test)]

@@ -2,7 +2,7 @@
 
 use bvhlab::glam::Vec2;
 use bvhlab::{Aabb2, NodeShape, Obb2, Sphere2};
-use egui::{Color32, Painter, Shape, Stroke};
+use egui::{Color32, Shape, Stroke};
 
 use crate::view::View;
 
@@ -34,72 +34,90 @@ pub mod colors {
     pub const SLAB_Y: Color32 = Color32::from_rgb(110, 160, 255);
 }
 
-/// Draws world geometry.
+/// Turns world geometry into egui shapes in screen space, collected so that the caller can
+/// paint them now or tessellate them once and reuse the mesh (see `canvas::StaticLayer`).
 pub struct WorldPainter<'a> {
-    /// The egui painter, clipped to the canvas.
-    pub painter: &'a Painter,
     /// The transform.
     pub view: &'a View,
+    /// The shapes so far, in painting order.
+    pub shapes: Vec<Shape>,
 }
 
-impl WorldPainter<'_> {
+impl<'a> WorldPainter<'a> {
+    /// A painter with no shapes yet.
+    pub fn new(view: &'a View) -> Self {
+        Self {
+            view,
+            shapes: Vec::new(),
+        }
+    }
+
+    /// Adds a screen-space shape.
+    pub fn add(&mut self, shape: impl Into<Shape>) {
+        self.shapes.push(shape.into());
+    }
+
     /// A segment.
-    pub fn line(&self, a: Vec2, b: Vec2, stroke: Stroke) {
-        self.painter
-            .line_segment([self.view.to_screen(a), self.view.to_screen(b)], stroke);
+    pub fn line(&mut self, a: Vec2, b: Vec2, stroke: Stroke) {
+        let seg = Shape::line_segment([self.view.to_screen(a), self.view.to_screen(b)], stroke);
+        self.add(seg);
     }
 
     /// A dot of `radius` screen points.
-    pub fn dot(&self, p: Vec2, radius: f32, color: Color32) {
-        self.painter
-            .circle_filled(self.view.to_screen(p), radius, color);
+    pub fn dot(&mut self, p: Vec2, radius: f32, color: Color32) {
+        let dot = Shape::circle_filled(self.view.to_screen(p), radius, color);
+        self.add(dot);
     }
 
     /// A closed polygon's outline.
-    pub fn polygon(&self, points: &[Vec2], stroke: Stroke) {
+    pub fn polygon(&mut self, points: &[Vec2], stroke: Stroke) {
         let pts = points.iter().map(|&p| self.view.to_screen(p)).collect();
-        self.painter.add(Shape::closed_line(pts, stroke));
+        self.add(Shape::closed_line(pts, stroke));
     }
 
     /// A filled convex polygon.
-    pub fn convex_fill(&self, points: &[Vec2], fill: Color32) {
+    pub fn convex_fill(&mut self, points: &[Vec2], fill: Color32) {
         let pts = points.iter().map(|&p| self.view.to_screen(p)).collect();
-        self.painter
-            .add(Shape::convex_polygon(pts, fill, Stroke::NONE));
+        self.add(Shape::convex_polygon(pts, fill, Stroke::NONE));
     }
 
     /// An axis-aligned box.
-    pub fn aabb(&self, b: &Aabb2, stroke: Stroke) {
+    pub fn aabb(&mut self, b: &Aabb2, stroke: Stroke) {
         if !(b.min.is_finite() && b.max.is_finite()) {
             return;
         }
         let rect = egui::Rect::from_two_pos(self.view.to_screen(b.min), self.view.to_screen(b.max));
-        self.painter
-            .rect_stroke(rect, 0.0, stroke, egui::StrokeKind::Middle);
+        self.add(Shape::rect_stroke(
+            rect,
+            0.0,
+            stroke,
+            egui::StrokeKind::Middle,
+        ));
     }
 
     /// An axis-aligned box, filled.
-    pub fn aabb_fill(&self, b: &Aabb2, fill: Color32) {
+    pub fn aabb_fill(&mut self, b: &Aabb2, fill: Color32) {
         if !(b.min.is_finite() && b.max.is_finite()) {
             return;
         }
         let rect = egui::Rect::from_two_pos(self.view.to_screen(b.min), self.view.to_screen(b.max));
-        self.painter.rect_filled(rect, 0.0, fill);
+        self.add(Shape::rect_filled(rect, 0.0, fill));
     }
 
     /// A circle.
-    pub fn sphere(&self, s: &Sphere2, stroke: Stroke) {
+    pub fn sphere(&mut self, s: &Sphere2, stroke: Stroke) {
         if s.center.is_finite() && s.radius.is_finite() && s.radius >= 0.0 {
-            self.painter.circle_stroke(
+            let circle = Shape::circle_stroke(
                 self.view.to_screen(s.center),
                 self.view.screen_length(s.radius),
                 stroke,
             );
+            self.add(circle);
         }
     }
 
     /// An oriented box.
-    pub fn obb(&self, o: &Obb2, stroke: Stroke) {
+    pub fn obb(&mut self, o: &Obb2, stroke: Stroke) {
         let corners = obb_corners(o);
         if corners.iter().all(|c| c.is_finite()) {
             self.polygon(&corners, stroke);
@@ -107,7 +125,7 @@ impl WorldPainter<'_> {
     }
 
     /// A node's shape.
-    pub fn node_shape(&self, shape: &NodeShape<Vec2>, stroke: Stroke) {
+    pub fn node_shape(&mut self, shape: &NodeShape<Vec2>, stroke: Stroke) {
         match shape {
             NodeShape::Aabb(b) => self.aabb(b, stroke),
             NodeShape::Sphere(s) => self.sphere(s, stroke),
@@ -116,31 +134,34 @@ impl WorldPainter<'_> {
     }
 
     /// A node's shape, filled (boxes and oriented boxes; circles as a disc).
-    pub fn node_fill(&self, shape: &NodeShape<Vec2>, fill: Color32) {
+    pub fn node_fill(&mut self, shape: &NodeShape<Vec2>, fill: Color32) {
         match shape {
             NodeShape::Aabb(b) => self.aabb_fill(b, fill),
             NodeShape::Sphere(s) => {
                 if s.center.is_finite() && s.radius.is_finite() {
-                    self.painter.circle_filled(
+                    let disc = Shape::circle_filled(
                         self.view.to_screen(s.center),
                         self.view.screen_length(s.radius),
                         fill,
                     );
+                    self.add(disc);
                 }
             }
             NodeShape::Obb(o) => self.convex_fill(&obb_corners(o), fill),
         }
     }
 
-    /// Text at a world point.
-    pub fn text(&self, at: Vec2, text: impl ToString, color: Color32) {
-        self.painter.text(
-            self.view.to_screen(at),
-            egui::Align2::LEFT_BOTTOM,
-            text,
-            egui::FontId::proportional(13.0),
-            color,
-        );
+    /// A circle of `radius` screen points around a world point.
+    pub fn ring(&mut self, center: Vec2, radius: f32, stroke: Stroke) {
+        let ring = Shape::circle_stroke(self.view.to_screen(center), radius, stroke);
+        self.add(ring);
+    }
+
+    /// Text at a world point (needs the fonts, so only for shapes painted directly).
+    pub fn text(&mut self, fonts: &egui::Painter, at: Vec2, text: &str, color: Color32) {
+        let galley = fonts.layout_no_wrap(text.to_owned(), egui::FontId::proportional(13.0), color);
+        let pos = self.view.to_screen(at) - egui::vec2(0.0, galley.size().y);
+        self.add(Shape::galley(pos, galley, color));
     }
 }
 

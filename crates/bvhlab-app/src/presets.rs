@@ -6,7 +6,7 @@ use crate::scene::{Scene, Shape, ShapeKind};
 use crate::structures::{BuildSettings, KdSplit, StructureKind};
 
 /// The preset scenes, in menu order.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Preset {
     /// §2: one elongated, tilted object, where sphere, AABB, OBB and hull differ most.
     BoundingVolumes,
@@ -16,7 +16,8 @@ pub enum Preset {
     KdHandful,
     /// §3: a quadtree on a handful of shapes.
     QuadtreeHandful,
-    /// 200 random segments.
+    /// 200 random segments: the scene the lab opens with.
+    #[default]
     RandomSegments,
     /// 300 random points.
     RandomPoints,
@@ -47,6 +48,24 @@ impl Preset {
             Self::RandomPoints => "300 random points",
             Self::TenThousand => "10,000 random segments",
         }
+    }
+
+    /// A short name for links (`?preset=...` in the page's address).
+    pub fn slug(self) -> &'static str {
+        match self {
+            Self::BoundingVolumes => "bounding-volumes",
+            Self::DuplicateTriangle => "duplicate-triangle",
+            Self::KdHandful => "kd-tree",
+            Self::QuadtreeHandful => "quadtree",
+            Self::RandomSegments => "random-segments",
+            Self::RandomPoints => "random-points",
+            Self::TenThousand => "10k",
+        }
+    }
+
+    /// The preset with this [`slug`](Self::slug).
+    pub fn from_slug(slug: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|p| p.slug() == slug)
     }
 
     /// The scene, and the structure settings it is best seen with.

@@ -24,8 +24,10 @@ pub struct Report {
     pub query: Option<RayReport>,
     /// The point query, if a point is placed.
     pub nearest: Option<NearestReport>,
-    /// The median frame time in milliseconds.
+    /// The median interval between frames, in milliseconds.
     pub frame_ms: Option<f64>,
+    /// The median CPU time per frame (UI, tessellation, draw calls), in milliseconds.
+    pub cpu_ms: Option<f64>,
 }
 
 /// The scene's size.
@@ -136,6 +138,7 @@ impl Report {
                 agrees: o.agrees(),
             }),
             frame_ms: app.clock.median_ms(),
+            cpu_ms: app.clock.median_cpu_ms(),
         }
     }
 

@@ -6,6 +6,7 @@ use std::cell::RefCell;
 
 use wasm_bindgen::JsCast;
 
+use crate::presets::Preset;
 use crate::report::Report;
 
 thread_local! {
@@ -31,7 +32,7 @@ pub fn start() {
             .start(
                 canvas,
                 eframe::WebOptions::default(),
-                Box::new(|_cc| Ok(Box::new(crate::LabApp::default()))),
+                Box::new(|_cc| Ok(Box::new(crate::LabApp::with_preset(start_preset())))),
             )
             .await;
         if let Err(e) = result {
@@ -41,6 +42,24 @@ pub fn start() {
             }
         }
     });
+}
+
+/// The preset the page's address asks for (`?preset=duplicate-triangle`), else the default.
+fn start_preset() -> Preset {
+    let search = web_sys::window()
+        .and_then(|w| w.location().search().ok())
+        .unwrap_or_default();
+    let asked = search
+        .trim_start_matches('?')
+        .split('&')
+        .find_map(|pair| pair.strip_prefix("preset="));
+    match asked {
+        Some(slug) => Preset::from_slug(slug).unwrap_or_else(|| {
+            log::warn!("unknown preset {slug:?} in the address; opening the default scene");
+            Preset::default()
+        }),
+        None => Preset::default(),
+    }
 }
 
 /// Writes the report into `#lab-status` when it changed.
