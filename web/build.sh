@@ -9,6 +9,8 @@
 # per release build; the page works without it (about 8 MB of wasm, under 3 MB gzipped).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# Where cargo install puts binaries, in case the shell's PATH lacks it (a fresh machine).
+export PATH="${CARGO_HOME:-$HOME/.cargo}/bin:$PATH"
 
 if ! rustup target list --installed | grep -qx wasm32-unknown-unknown; then
   rustup target add wasm32-unknown-unknown
