@@ -1,5 +1,5 @@
-//! The canvas: pointer input for the active tool ([`input`]), pan and zoom, and drawing
-//! ([`draw`]: structure, query marks, scene, bounding volumes, queries, handles).
+//! The canvas: pointer input for the active tool (`input.rs`), pan and zoom, and drawing
+//! (`draw.rs`: structure, query marks, scene, bounding volumes, queries, handles).
 
 mod draw;
 mod input;
