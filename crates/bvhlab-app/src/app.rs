@@ -309,8 +309,6 @@ impl LabApp {
         egui::CentralPanel::default()
             .frame(egui::Frame::NONE.fill(egui::Color32::from_rgb(24, 26, 32)))
             .show(ui, |ui| crate::canvas::canvas(self, ui));
-        // Queries changed by this frame's input are answered before the report is written.
-        self.refresh();
         self.report = Report::of(self);
     }
 }

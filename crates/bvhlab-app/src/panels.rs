@@ -13,7 +13,7 @@ use crate::presets::Preset;
 use crate::query::NodeMark;
 use crate::structures::{KdSplit, StructureKind};
 use crate::tool::{Interaction, Tool};
-use crate::volumes::{SlabExplain, ray_sphere};
+use crate::volumes::SlabExplain;
 
 /// The whole control panel.
 pub fn controls(app: &mut LabApp, ui: &mut egui::Ui) {
@@ -202,7 +202,7 @@ fn ray_tests(app: &mut LabApp, fits: &crate::volumes::Fits, ui: &mut egui::Ui) {
                     }
                 }
             });
-            let q = ray_sphere(&fits.centroid, &ray);
+            let q = fits.centroid.ray_quadratic(&ray);
             ui.label(format!(
                 "Ray-sphere (centroid sphere): a t² + b t + c = 0 with a = {:.3}, b = {:.3}, \
                  c = {:.3}; discriminant {:.3}: {}.",
@@ -399,7 +399,6 @@ fn structure_display(app: &mut LabApp, ui: &mut egui::Ui) {
         ui.checkbox(&mut d.query_marks, "mark query steps");
     });
     let deepest = stats.max_depth as u32;
-    d.max_depth = d.max_depth.min(deepest.max(d.max_depth.min(64)));
     let mut depth = d.max_depth.min(deepest);
     if ui
         .add(egui::Slider::new(&mut depth, 0..=deepest).text("show depth ≤"))

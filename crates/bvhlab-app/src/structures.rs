@@ -8,8 +8,8 @@ use bvhlab::structure::{
     BspOptions, BvhOptions, GridOptions, KdTreeOptions, NodeOutline, OrthtreeOptions, SplitMethod,
 };
 use bvhlab::{
-    Aabb2, AabbTree2, BruteForce, Bsp2, Grid2, KdTree2, Nearest, ObbTree2, Observer, Outline,
-    Quadtree2, Ray2, Segment2, SpatialIndex, SphereTree2, Stats, Traced,
+    AabbTree2, BruteForce, Bsp2, Grid2, KdTree2, Nearest, ObbTree2, Observer, Outline, Quadtree2,
+    Ray2, Segment2, SpatialIndex, SphereTree2, Stats, Traced,
 };
 
 /// The structures the lab offers, in the lecture's order.
@@ -224,11 +224,6 @@ impl Built {
         observer: &mut O,
     ) -> Traced<Vec<Nearest<Vec2>>> {
         with_structure!(self, s => s.k_nearest_observed(point, k, observer))
-    }
-
-    /// The box around the structure's root (the scene's box), if it has one.
-    pub fn root_box(&self) -> Option<Aabb2> {
-        self.outline().first().map(|n| n.shape.aabb())
     }
 }
 

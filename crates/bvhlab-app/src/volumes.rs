@@ -4,7 +4,6 @@
 
 use bvhlab::glam::Vec2;
 use bvhlab::volume::AxisTest;
-use bvhlab::volume::sphere::RayQuadratic;
 use bvhlab::{Aabb2, ConvexHull2, FitReport, Obb2, PcaFit, Ray2, Sphere2};
 
 /// Every bounding volume of a point set, fitted by the core.
@@ -170,11 +169,6 @@ impl SlabExplain {
         let exit = self.axes[0].naive.1.min(self.axes[1].naive.1);
         Some(enter <= exit)
     }
-}
-
-/// The ray-sphere quadratic of the slide, for one sphere.
-pub fn ray_sphere(sphere: &Sphere2, ray: &Ray2) -> RayQuadratic {
-    sphere.ray_quadratic(ray)
 }
 
 /// One box the student drags in the separating-axis demo.

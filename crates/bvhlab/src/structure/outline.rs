@@ -80,12 +80,13 @@ pub trait Outline: SpatialIndex {
     fn outline(&self) -> Vec<NodeOutline<PointOf<Self>>>;
 }
 
-/// Fills in `parent` and `depth` from the `children` lists, starting at node 0.
+/// Fills in `parent` and `depth` from the `children` lists; parents must come before their
+/// children (the structures store nodes root first).
 fn link_parents<V: Vector>(nodes: &mut [NodeOutline<V>]) {
     for i in 0..nodes.len() {
-        let (depth, children) = (nodes[i].depth, nodes[i].children.clone());
-        for child in children {
-            let c = &mut nodes[child.index()];
+        let depth = nodes[i].depth;
+        for k in 0..nodes[i].children.len() {
+            let c = &mut nodes[nodes[i].children[k].index()];
             c.parent = Some(NodeId(i as u32));
             c.depth = depth + 1;
         }
@@ -261,11 +262,7 @@ impl<P: Primitive> Outline for Orthtree<P> {
             });
         }
         let mut nodes: Vec<_> = nodes.into_iter().flatten().collect();
-        for i in 0..nodes.len() {
-            for child in nodes[i].children.clone() {
-                nodes[child.index()].parent = Some(NodeId(i as u32));
-            }
-        }
+        link_parents(&mut nodes);
         nodes
     }
 }
