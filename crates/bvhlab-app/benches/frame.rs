@@ -45,7 +45,7 @@ fn dragging_a_ray(c: &mut Criterion) {
     ] {
         let ctx = egui::Context::default();
         let mut app = LabApp::with_preset(Preset::TenThousand);
-        app.settings.kind = kind;
+        app.lane.settings.kind = kind;
         // Two frames for layout, fitting the view and the first build.
         frame(&ctx, &mut app);
         frame(&ctx, &mut app);
@@ -66,7 +66,8 @@ fn dragging_a_ray(c: &mut Criterion) {
             });
         });
         assert!(
-            app.ray_outcome
+            app.lane
+                .ray_outcome
                 .as_ref()
                 .is_some_and(bvhlab_app::query::RayOutcome::agrees)
         );

@@ -3,70 +3,20 @@
 //! middle, a status line at the bottom.
 
 use bvhlab::glam::Vec2;
-use bvhlab::{BruteForce, NodeOutline, Ray2, Segment2, SpatialIndex, Stats};
+use bvhlab::{NodeId, Ray2};
 use web_time::Instant;
 
 use crate::frame_clock::FrameClock;
+use crate::lane::Lane;
+use crate::playback::Playback;
 use crate::presets::Preset;
-use crate::query::{NodeMarks, PointOutcome, RayOutcome};
+use crate::pseudocode::{Task, Variant};
+use crate::recording::Question;
 use crate::report::Report;
-use crate::scene::{Primitives, Scene};
-use crate::structures::{BuildSettings, Built};
+use crate::scene::Scene;
 use crate::tool::{Interaction, Tool};
 use crate::view::View;
 use crate::volumes::{ObbPair, VolumeToggles};
-
-/// The structure built on the current scene, and everything read from it once.
-pub struct Built2d {
-    /// The settings it was built with.
-    pub settings: BuildSettings,
-    /// The scene revision it was built on.
-    pub revision: u64,
-    /// The primitives and their shapes.
-    pub prims: Primitives,
-    /// The structure.
-    pub structure: Built,
-    /// The baseline.
-    pub brute: BruteForce<Segment2>,
-    /// Its nodes, for drawing.
-    pub outline: Vec<NodeOutline<Vec2>>,
-    /// Its statistics.
-    pub stats: Stats,
-    /// How long the build took, in milliseconds.
-    pub build_ms: f64,
-    /// For leaf colouring: the first leaf listing each primitive.
-    pub leaf_of: Vec<Option<u32>>,
-}
-
-impl Built2d {
-    fn new(scene: &Scene, settings: BuildSettings) -> Self {
-        let prims = scene.primitives();
-        let start = Instant::now();
-        let structure = Built::build(&prims.segments, &settings);
-        let build_ms = start.elapsed().as_secs_f64() * 1e3;
-        let outline = structure.outline();
-        let mut leaf_of = vec![None; prims.segments.len()];
-        for node in outline.iter().filter(|n| n.is_leaf()) {
-            for &p in &node.primitives {
-                let slot = &mut leaf_of[p as usize];
-                if slot.is_none() {
-                    *slot = Some(node.id.0);
-                }
-            }
-        }
-        Self {
-            settings,
-            revision: scene.revision(),
-            stats: structure.stats(),
-            brute: BruteForce::build(&prims.segments),
-            prims,
-            structure,
-            outline,
-            build_ms,
-            leaf_of,
-        }
-    }
-}
 
 /// How the structure is drawn.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -135,24 +85,30 @@ pub struct LabApp {
     pub tool: Tool,
     /// A drag or drawing in progress.
     pub interaction: Interaction,
-    /// The structure to build.
-    pub settings: BuildSettings,
-    /// The structure built on the scene.
-    pub built: Option<Built2d>,
+    /// The structure, and what was derived from it.
+    pub lane: Lane,
+    /// A second structure on the same scene and question, shown side by side.
+    pub compare: Option<Lane>,
+    /// What playback steps through.
+    pub task: Task,
+    /// Which version of the algorithm.
+    pub variant: Variant,
+    /// The transport.
+    pub playback: Playback,
+    /// The range query's radius.
+    pub radius: f32,
+    /// The node hovered on the canvas or in a tree diagram this frame: (lane, node).
+    pub hovered: Option<(usize, NodeId)>,
+    /// Last frame's hovered node, which the tree diagrams (drawn before the canvas) show.
+    pub linked: Option<(usize, NodeId)>,
+    /// Hovering the canvas finds the node under the pointer (and the tree diagram shows it).
+    pub link_hover: bool,
     /// The query ray.
     pub ray: Option<RayHandles>,
     /// The query point.
     pub point: Option<Vec2>,
     /// How many neighbours the point query finds.
     pub k: usize,
-    /// The ray query's outcome.
-    pub ray_outcome: Option<RayOutcome>,
-    /// The point query's outcome.
-    pub point_outcome: Option<PointOutcome>,
-    /// The marks of the most recent query (what the canvas highlights).
-    pub marks: Option<NodeMarks>,
-    /// Which query the marks belong to: true for the ray.
-    pub marks_from_ray: bool,
     /// Drawing switches.
     pub display: Display,
     /// Which bounding volumes are drawn.
@@ -171,8 +127,6 @@ pub struct LabApp {
     pub report: Report,
     /// The selection's bounding volumes, keyed by scene revision and selection.
     pub fits_cache: Option<(FitsKey, Option<crate::volumes::Fits>)>,
-    /// The structure and scene, tessellated for the current view.
-    pub static_layer: Option<crate::canvas::StaticLayer>,
 }
 
 impl Default for LabApp {
@@ -186,15 +140,18 @@ impl Default for LabApp {
             fit_pending: true,
             tool: Tool::Ray,
             interaction: Interaction::None,
-            settings,
-            built: None,
+            lane: Lane::new(settings),
+            compare: None,
+            task: Task::FirstHit,
+            variant: Variant::Full,
+            playback: Playback::default(),
+            radius: 3.0,
+            hovered: None,
+            linked: None,
+            link_hover: true,
             ray: None,
             point: None,
             k: 1,
-            ray_outcome: None,
-            point_outcome: None,
-            marks: None,
-            marks_from_ray: true,
             display: Display::default(),
             volume_toggles: VolumeToggles::default(),
             obb_pair: None,
@@ -204,7 +161,6 @@ impl Default for LabApp {
             renderer: None,
             report: Report::default(),
             fits_cache: None,
-            static_layer: None,
         }
     }
 }
@@ -222,7 +178,7 @@ impl LabApp {
         let (scene, settings) = preset.build();
         self.preset = preset;
         self.scene = scene;
-        self.settings = settings;
+        self.lane.settings = settings;
         self.selection.clear();
         self.interaction = Interaction::None;
         self.ray = None;
@@ -234,71 +190,83 @@ impl LabApp {
         }
     }
 
-    /// Rebuilds the structure when the scene or the settings changed, and reruns the
-    /// queries when anything they depend on changed.
+    /// The question playback steps through, from the task, the ray and the point.
+    pub fn question(&self) -> Question {
+        let variant = if crate::pseudocode::variants(self.lane.settings.kind, self.task)
+            .contains(&self.variant)
+        {
+            self.variant
+        } else {
+            Variant::Full
+        };
+        Question {
+            task: self.task,
+            variant,
+            ray: self.ray.and_then(|r| r.ray().ok()),
+            point: self.point,
+            k: self.k.max(1),
+            radius: self.radius,
+        }
+    }
+
+    /// Rebuilds the structures when the scene or the settings changed, re-records the
+    /// question when anything it depends on changed, and brings the snapshots to the
+    /// playback step.
     pub fn refresh(&mut self) {
-        let stale = self
-            .built
-            .as_ref()
-            .is_none_or(|b| b.revision != self.scene.revision() || b.settings != self.settings);
-        if stale {
-            self.built = Some(Built2d::new(&self.scene, self.settings));
-            self.ray_outcome = None;
-            self.point_outcome = None;
+        let question = self.question();
+        let mut changed = self.lane.refresh(&self.scene, &question);
+        if let Some(other) = &mut self.compare {
+            changed |= other.refresh(&self.scene, &question);
         }
-        let Some(built) = &self.built else { return };
-        let mut changed = false;
-        match self.ray.map(|r| r.ray()) {
-            Some(Ok(ray)) => {
-                if self.ray_outcome.as_ref().is_none_or(|o| o.ray != ray) {
-                    self.ray_outcome = Some(RayOutcome::run(&built.structure, &built.brute, ray));
-                    self.marks_from_ray = true;
-                    changed = true;
-                }
-            }
-            Some(Err(_)) | None => {
-                if self.ray_outcome.take().is_some() {
-                    changed = true;
-                }
-            }
+        if changed {
+            let len = self.steps();
+            self.playback.fit(len);
         }
-        match self.point {
-            Some(p) => {
-                let k = self.k.max(1);
-                let same = self
-                    .point_outcome
-                    .as_ref()
-                    .is_some_and(|o| o.point == p && o.k == k);
-                if !same {
-                    self.point_outcome =
-                        Some(PointOutcome::run(&built.structure, &built.brute, p, k));
-                    self.marks_from_ray = false;
-                    changed = true;
-                }
-            }
-            None => {
-                if self.point_outcome.take().is_some() {
-                    changed = true;
-                }
-            }
+        self.lane.follow(&self.playback);
+        if let Some(other) = &mut self.compare {
+            other.follow(&self.playback);
         }
-        if changed || stale || self.marks.is_none() {
-            let events = if self.marks_from_ray {
-                self.ray_outcome.as_ref().map(|o| &o.events)
-            } else {
-                self.point_outcome.as_ref().map(|o| &o.events)
-            }
-            .or(self.ray_outcome.as_ref().map(|o| &o.events))
-            .or(self.point_outcome.as_ref().map(|o| &o.events));
-            self.marks = events.map(|e| NodeMarks::from_events(e, built.outline.len()));
+    }
+
+    /// Makes the question about the ray (first hit, unless another ray task is chosen).
+    pub fn ask_about_ray(&mut self) {
+        if !matches!(self.task, Task::FirstHit | Task::AnyHit | Task::AllHits) {
+            self.task = Task::FirstHit;
         }
+    }
+
+    /// Makes the question about the point (nearest, unless the range task is chosen).
+    pub fn ask_about_point(&mut self) {
+        if !matches!(self.task, Task::Nearest | Task::Range) {
+            self.task = Task::Nearest;
+        }
+    }
+
+    /// The longest recording's length: the last step of playback.
+    pub fn steps(&self) -> usize {
+        self.lane
+            .steps()
+            .max(self.compare.as_ref().map_or(0, Lane::steps))
+    }
+
+    /// The lanes shown: the main one, and the comparison when on.
+    pub fn lanes(&self) -> impl Iterator<Item = &Lane> {
+        std::iter::once(&self.lane).chain(self.compare.as_ref())
     }
 
     /// The lab's whole UI, inside `ui` (the native window, the web canvas, or a test
     /// harness).
     pub fn show(&mut self, ui: &mut egui::Ui) {
+        let dt = ui.input(|i| f64::from(i.stable_dt));
+        self.linked = self.hovered.take();
         self.clock.tick(Instant::now());
         self.refresh();
+        if self.playback.advance(dt, self.steps()) {
+            self.refresh();
+        }
+        if self.playback.playing {
+            ui.ctx().request_repaint();
+        }
         egui::Panel::left("controls")
             .resizable(true)
             .default_size(340.0)
@@ -306,6 +274,12 @@ impl LabApp {
                 egui::ScrollArea::vertical().show(ui, |ui| crate::panels::controls(self, ui));
             });
         egui::Panel::bottom("status").show(ui, |ui| crate::panels::status_line(self, ui));
+        egui::Panel::right("stepper")
+            .resizable(true)
+            .default_size(380.0)
+            .show(ui, |ui| {
+                egui::ScrollArea::vertical().show(ui, |ui| crate::stepper::stepper(self, ui));
+            });
         egui::CentralPanel::default()
             .frame(egui::Frame::NONE.fill(egui::Color32::from_rgb(24, 26, 32)))
             .show(ui, |ui| crate::canvas::canvas(self, ui));

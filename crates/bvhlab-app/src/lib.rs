@@ -11,14 +11,20 @@
 //! - [`report`]: the lab's state for the page (the browser test and screen readers read it).
 
 pub mod app;
+pub mod build_view;
 pub mod canvas;
 pub mod frame_clock;
+pub mod lane;
 pub mod paint;
 pub mod panels;
+pub mod playback;
 pub mod presets;
+pub mod pseudocode;
 pub mod query;
+pub mod recording;
 pub mod report;
 pub mod scene;
+pub mod stepper;
 pub mod structures;
 pub mod tool;
 pub mod view;

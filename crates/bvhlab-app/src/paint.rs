@@ -28,6 +28,14 @@ pub mod colors {
     pub const STRUCTURE: Color32 = Color32::from_rgba_premultiplied(110, 130, 190, 150);
     /// Primitives the query tested exactly.
     pub const TESTED: Color32 = Color32::from_rgb(255, 140, 0);
+    /// The node the playback is at.
+    pub const CURRENT: Color32 = Color32::from_rgb(255, 255, 255);
+    /// Nodes waiting on the traversal stack or queue.
+    pub const WAITING: Color32 = Color32::from_rgb(150, 120, 255);
+    /// A build's current node: primitives going to its first child.
+    pub const FIRST_SIDE: Color32 = Color32::from_rgb(90, 200, 255);
+    /// ... and to its second child.
+    pub const SECOND_SIDE: Color32 = Color32::from_rgb(255, 120, 170);
     /// The x slab.
     pub const SLAB_X: Color32 = Color32::from_rgb(255, 100, 100);
     /// The y slab.

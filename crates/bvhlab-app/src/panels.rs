@@ -97,7 +97,11 @@ fn scene_section(app: &mut LabApp, ui: &mut egui::Ui) {
         let removed = std::mem::take(&mut app.selection);
         app.scene.remove(&removed);
     }
-    let prims = app.built.as_ref().map_or(0, |b| b.prims.segments.len());
+    let prims = app
+        .lane
+        .built
+        .as_ref()
+        .map_or(0, |b| b.prims.segments.len());
     ui.label(format!(
         "{} shapes, {prims} primitives (segments; a point is a segment of length 0).",
         app.scene.shapes().len()
@@ -333,7 +337,7 @@ fn slab_details(s: &SlabExplain, ui: &mut egui::Ui) {
 }
 
 fn structure_section(app: &mut LabApp, ui: &mut egui::Ui) {
-    let s = &mut app.settings;
+    let s = &mut app.lane.settings;
     egui::ComboBox::from_label("Structure")
         .selected_text(s.kind.label())
         .show_ui(ui, |ui| {
@@ -390,7 +394,7 @@ fn structure_section(app: &mut LabApp, ui: &mut egui::Ui) {
 }
 
 fn structure_display(app: &mut LabApp, ui: &mut egui::Ui) {
-    let Some(built) = &app.built else { return };
+    let Some(built) = &app.lane.built else { return };
     let stats = &built.stats;
     let d = &mut app.display;
     ui.horizontal_wrapped(|ui| {
@@ -464,22 +468,12 @@ fn query_section(app: &mut LabApp, ui: &mut egui::Ui) {
     });
     ray_answer(app, ui);
     point_answer(app, ui);
-    if app.ray_outcome.is_none() && app.point_outcome.is_none() {
+    if app.lane.ray_outcome.is_none() && app.lane.point_outcome.is_none() {
         ui.label("Use the Ray tool or the Query point tool on the canvas.");
         return;
     }
-    if app.ray_outcome.is_some() && app.point_outcome.is_some() {
-        ui.horizontal(|ui| {
-            ui.label("Mark the steps of:");
-            let before = app.marks_from_ray;
-            ui.radio_value(&mut app.marks_from_ray, true, "ray");
-            ui.radio_value(&mut app.marks_from_ray, false, "point");
-            if before != app.marks_from_ray {
-                app.marks = None;
-            }
-        });
-    }
-    if let Some(marks) = &app.marks {
+    crate::stepper::task_picker(app, ui);
+    if let Some(marks) = app.lane.marks() {
         ui.horizontal_wrapped(|ui| {
             legend(
                 ui,
@@ -551,7 +545,7 @@ fn ray_answer(app: &LabApp, ui: &mut egui::Ui) {
         // e and s coincide (a drag that ended where it began): say why nothing is answered.
         ui.label(format!("No ray: {e}. Drag s away from e."));
     }
-    if let Some(o) = &app.ray_outcome {
+    if let Some(o) = &app.lane.ray_outcome {
         let e = o.ray.origin();
         let d = o.ray.dir();
         ui.label(format!(
@@ -562,6 +556,7 @@ fn ray_answer(app: &LabApp, ui: &mut egui::Ui) {
             Some(h) => {
                 let p = o.ray.at(h.t);
                 let shape = app
+                    .lane
                     .built
                     .as_ref()
                     .and_then(|b| b.prims.owner.get(h.prim))
@@ -587,7 +582,7 @@ fn ray_answer(app: &LabApp, ui: &mut egui::Ui) {
 }
 
 fn point_answer(app: &LabApp, ui: &mut egui::Ui) {
-    if let Some(o) = &app.point_outcome {
+    if let Some(o) = &app.lane.point_outcome {
         ui.label(format!(
             "Query point q = ({:.2}, {:.2})",
             o.point.x, o.point.y

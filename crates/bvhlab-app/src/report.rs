@@ -100,10 +100,14 @@ impl Report {
             canvas: [r.min.x, r.min.y, r.max.x, r.max.y],
             scene: SceneReport {
                 shapes: app.scene.shapes().len(),
-                primitives: app.built.as_ref().map_or(0, |b| b.prims.segments.len()),
+                primitives: app
+                    .lane
+                    .built
+                    .as_ref()
+                    .map_or(0, |b| b.prims.segments.len()),
             },
-            structure: app.settings.kind.label().to_owned(),
-            query: app.ray_outcome.as_ref().map(|o| RayReport {
+            structure: app.lane.settings.kind.label().to_owned(),
+            query: app.lane.ray_outcome.as_ref().map(|o| RayReport {
                 kind: "ray",
                 ray: [
                     o.ray.origin().x,
@@ -125,7 +129,7 @@ impl Report {
                 brute_force_tests: o.brute_cost.prim_tests,
                 agrees: o.agrees(),
             }),
-            nearest: app.point_outcome.as_ref().map(|o| NearestReport {
+            nearest: app.lane.point_outcome.as_ref().map(|o| NearestReport {
                 point: [o.point.x, o.point.y],
                 nearest: o
                     .nearest

@@ -2,10 +2,11 @@
 //! core types so the rest of the lab handles "a structure" without knowing which.
 
 use bvhlab::glam::Vec2;
-use bvhlab::structure::bvh::SphereFit;
+use bvhlab::structure::bvh::{Bvh, NodeVolume, SphereFit, SplitRecord};
 use bvhlab::structure::kdtree::{AxisRule, KdBuilder};
 use bvhlab::structure::{
-    BspOptions, BvhOptions, GridOptions, KdTreeOptions, NodeOutline, OrthtreeOptions, SplitMethod,
+    BspOptions, BvhOptions, GridOptions, KdTreeOptions, NodeOutline, OrthtreeOptions, RangeShape,
+    SplitMethod,
 };
 use bvhlab::{
     AabbTree2, BruteForce, Bsp2, Grid2, KdTree2, Nearest, ObbTree2, Observer, Outline, Quadtree2,
@@ -150,38 +151,52 @@ macro_rules! with_structure {
 impl Built {
     /// Builds the structure `settings` describe over `prims`.
     pub fn build(prims: &[Segment2], settings: &BuildSettings) -> Self {
+        Self::build_observed(prims, settings, &mut (), false).0
+    }
+
+    /// Builds the structure, reporting each step to `observer`; with `log`, also returns a
+    /// BVH's split decisions with their SAH cost curves (other structures log none).
+    pub fn build_observed<O: Observer<Vec2>>(
+        prims: &[Segment2],
+        settings: &BuildSettings,
+        observer: &mut O,
+        log: bool,
+    ) -> (Self, Vec<SplitRecord>) {
         let bvh = BvhOptions {
             method: settings.bvh_split,
             max_leaf_size: settings.leaf_size.max(1),
             sphere_fit: settings.sphere_fit,
             ..BvhOptions::default()
         };
+        let tree = |built: Self| (built, Vec::new());
         match settings.kind {
-            StructureKind::BruteForce => Self::BruteForce(BruteForce::build(prims)),
-            StructureKind::SphereTree => Self::SphereTree(SphereTree2::with_options(prims, &bvh)),
-            StructureKind::AabbTree => Self::AabbTree(AabbTree2::with_options(prims, &bvh)),
-            StructureKind::ObbTree => Self::ObbTree(ObbTree2::with_options(prims, &bvh)),
+            StructureKind::BruteForce => tree(Self::BruteForce(BruteForce::build(prims))),
+            StructureKind::SphereTree => bvh_build(prims, &bvh, observer, log, Self::SphereTree),
+            StructureKind::AabbTree => bvh_build(prims, &bvh, observer, log, Self::AabbTree),
+            StructureKind::ObbTree => bvh_build(prims, &bvh, observer, log, Self::ObbTree),
             StructureKind::Grid => {
                 let n = settings.grid_cells;
                 let options = GridOptions {
                     resolution: (n > 0).then_some([n, n, 1]),
                     ..GridOptions::default()
                 };
-                Self::Grid(Grid2::with_options(prims, options))
+                tree(Self::Grid(Grid2::build_observed(prims, options, observer)))
             }
             StructureKind::Bsp => {
                 let options = BspOptions {
                     leaf_size: settings.leaf_size.max(1),
                     ..BspOptions::default()
                 };
-                Self::Bsp(Bsp2::with_options(prims, &options))
+                tree(Self::Bsp(Bsp2::build_observed(prims, &options, observer)))
             }
             StructureKind::Quadtree => {
                 let options = OrthtreeOptions {
                     max_leaf_size: settings.leaf_size.max(1),
                     max_depth: settings.quadtree_depth,
                 };
-                Self::Quadtree(Quadtree2::with_options(prims, options))
+                tree(Self::Quadtree(Quadtree2::build_observed(
+                    prims, options, observer,
+                )))
             }
             StructureKind::KdTree => {
                 let mut options = match settings.kd_split {
@@ -192,7 +207,9 @@ impl Built {
                 if !matches!(options.builder, KdBuilder::Sah(_)) {
                     options.leaf_size = settings.leaf_size.max(1);
                 }
-                Self::KdTree(KdTree2::with_options(prims, &options))
+                tree(Self::KdTree(KdTree2::build_observed(
+                    prims, &options, observer,
+                )))
             }
         }
     }
@@ -216,6 +233,53 @@ impl Built {
         with_structure!(self, s => s.ray_first_hit_observed(ray, f32::INFINITY, observer))
     }
 
+    /// Any hit along `ray` (the first one found, not necessarily the nearest).
+    pub fn ray_any_hit<O: Observer<Vec2>>(
+        &self,
+        ray: &Ray2,
+        observer: &mut O,
+    ) -> Traced<Option<bvhlab::Hit>> {
+        with_structure!(self, s => s.ray_any_hit_observed(ray, f32::INFINITY, observer))
+    }
+
+    /// Every hit along `ray`, nearest first.
+    pub fn ray_all_hits<O: Observer<Vec2>>(
+        &self,
+        ray: &Ray2,
+        observer: &mut O,
+    ) -> Traced<Vec<bvhlab::Hit>> {
+        with_structure!(self, s => s.ray_all_hits_observed(ray, f32::INFINITY, observer))
+    }
+
+    /// The primitives that share a point with `shape`, in increasing index order.
+    pub fn range<O: Observer<Vec2>>(
+        &self,
+        shape: &RangeShape<Vec2>,
+        observer: &mut O,
+    ) -> Traced<Vec<usize>> {
+        with_structure!(self, s => s.range_observed(shape, observer))
+    }
+
+    /// The slides' recursive `intersect(bvNode, ray, t)`, for BVHs; `None` for the others.
+    pub fn lecture_intersect<O: Observer<Vec2>>(
+        &self,
+        _ray: &Ray2,
+        _observer: &mut O,
+    ) -> Option<Traced<Option<bvhlab::Hit>>> {
+        None
+    }
+
+    /// The slides' `minDistance(bvNode, point, currentMin)`, for BVHs (with `pruned`, plus
+    /// the pruning the slide leaves out); `None` for the others.
+    pub fn lecture_min_distance<O: Observer<Vec2>>(
+        &self,
+        _point: Vec2,
+        _pruned: bool,
+        _observer: &mut O,
+    ) -> Option<Traced<Option<Nearest<Vec2>>>> {
+        None
+    }
+
     /// The `k` nearest primitives to `point`, reporting each step to `observer`.
     pub fn k_nearest<O: Observer<Vec2>>(
         &self,
@@ -224,6 +288,27 @@ impl Built {
         observer: &mut O,
     ) -> Traced<Vec<Nearest<Vec2>>> {
         with_structure!(self, s => s.k_nearest_observed(point, k, observer))
+    }
+}
+
+/// Builds a BVH of any node volume, with its split log when asked (the log costs a vector
+/// per node, so plain builds skip it).
+fn bvh_build<B, O>(
+    prims: &[Segment2],
+    options: &BvhOptions,
+    observer: &mut O,
+    log: bool,
+    wrap: fn(Bvh<B, Segment2>) -> Built,
+) -> (Built, Vec<SplitRecord>)
+where
+    B: NodeVolume<Point = Vec2>,
+    O: Observer<Vec2>,
+{
+    if log {
+        let (tree, log) = Bvh::build_observed(prims, options, observer);
+        (wrap(tree), log)
+    } else {
+        (wrap(Bvh::with_options(prims, options)), Vec::new())
     }
 }
 

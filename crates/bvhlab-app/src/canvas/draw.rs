@@ -5,11 +5,15 @@ use bvhlab::glam::Vec2;
 use bvhlab::{Aabb2, BoundingVolume, Ray2};
 use egui::{Color32, Stroke};
 
+use super::steps;
 use crate::app::LabApp;
+use crate::lane::Lane;
 use crate::paint::{WorldPainter, clipped_plane, colors};
+use crate::pseudocode::Task;
 use crate::query::NodeMark;
 use crate::structures::StructureKind;
 use crate::tool::{Interaction, Tool};
+use crate::view::View;
 use crate::volumes::{Fits, ObbPair, SlabExplain};
 
 /// The most shapes the static layer anti-aliases (see [`tessellate`]).
@@ -27,7 +31,7 @@ fn leaf_colour(leaf: u32) -> Color32 {
 pub struct LayerKey {
     revision: u64,
     settings: crate::structures::BuildSettings,
-    view: crate::view::View,
+    view: View,
     display: crate::app::Display,
     selection: Vec<usize>,
     pixels_per_point: f32,
@@ -41,35 +45,66 @@ pub struct StaticLayer {
     mesh: std::sync::Arc<egui::Mesh>,
 }
 
-pub(super) fn draw(app: &mut LabApp, painter: &egui::Painter, hover: Option<egui::Pos2>) {
-    let view = app.view;
+/// Draws lane `index` (0: the main structure, 1: the comparison) through `view`.
+pub(super) fn draw(
+    app: &mut LabApp,
+    index: usize,
+    view: View,
+    painter: &egui::Painter,
+    hover: Option<egui::Pos2>,
+) {
+    let building = app.task == Task::Build && !app.playback.at_end;
+    let mut display = app.display;
+    // While a build is stepped through, the structure appears node by node instead.
+    display.structure &= !building;
     let key = LayerKey {
         revision: app.scene.revision(),
-        settings: app.settings,
+        settings: lane(app, index).settings,
         view,
-        display: app.display,
+        display,
         selection: app.selection.clone(),
         pixels_per_point: painter.ctx().pixels_per_point(),
     };
-    if app.static_layer.as_ref().is_none_or(|l| l.key != key) {
+    let cached = lane(app, index)
+        .static_layer
+        .as_ref()
+        .is_some_and(|l| l.key == key);
+    if !cached {
         let mut wp = WorldPainter::new(&view);
-        draw_structure(app, &mut wp);
-        draw_scene(app, &mut wp);
+        if display.structure {
+            draw_structure(lane(app, index), app.display.max_depth, &mut wp);
+        }
+        draw_scene(app, lane(app, index), &mut wp);
         let mesh = tessellate(painter.ctx(), wp.shapes, view.rect);
-        app.static_layer = Some(StaticLayer {
+        let layer = StaticLayer {
             key,
             mesh: std::sync::Arc::new(mesh),
-        });
+        };
+        if let Some(l) = lane_mut(app, index) {
+            l.static_layer = Some(layer);
+        }
     }
-    if let Some(layer) = &app.static_layer {
+    if let Some(layer) = &lane(app, index).static_layer {
         painter.add(egui::Shape::Mesh(layer.mesh.clone()));
     }
     let mut wp = WorldPainter::new(&view);
-    draw_marks(app, &mut wp);
-    if app.display.volumes || app.display.slab_test {
+    let this = lane(app, index);
+    if building {
+        steps::draw_build_state(this, &mut wp);
+    }
+    if app.display.query_marks && !building {
+        draw_marks(this, app.display.max_depth, &mut wp);
+        steps::draw_step(this, app.playback.at_end, &mut wp);
+    }
+    if let Some((at, node)) = app.hovered
+        && at == index
+    {
+        steps::draw_hovered(this, node, &mut wp);
+    }
+    if index == 0 && (app.display.volumes || app.display.slab_test) {
         draw_volumes(app, &mut wp);
     }
-    draw_queries(app, &mut wp, painter);
+    draw_queries(app, lane(app, index), &mut wp, painter);
     if app.tool == Tool::Obb
         && let Some(pair) = &app.obb_pair
     {
@@ -77,6 +112,51 @@ pub(super) fn draw(app: &mut LabApp, painter: &egui::Painter, hover: Option<egui
     }
     draw_in_progress(app, &mut wp, hover.map(|h| view.to_world(h)));
     painter.extend(wp.shapes);
+}
+
+/// The shapes of lane `index` that make a picture for export (SVG): the whole canvas,
+/// untessellated.
+pub fn picture(
+    app: &mut LabApp,
+    index: usize,
+    view: View,
+    painter: &egui::Painter,
+) -> Vec<egui::Shape> {
+    let mut wp = WorldPainter::new(&view);
+    let building = app.task == Task::Build && !app.playback.at_end;
+    if app.display.structure && !building {
+        draw_structure(lane(app, index), app.display.max_depth, &mut wp);
+    }
+    draw_scene(app, lane(app, index), &mut wp);
+    let this = lane(app, index);
+    if building {
+        steps::draw_build_state(this, &mut wp);
+    }
+    if app.display.query_marks && !building {
+        draw_marks(this, app.display.max_depth, &mut wp);
+        steps::draw_step(this, app.playback.at_end, &mut wp);
+    }
+    if index == 0 && (app.display.volumes || app.display.slab_test) {
+        draw_volumes(app, &mut wp);
+    }
+    draw_queries(app, lane(app, index), &mut wp, painter);
+    wp.shapes
+}
+
+/// Lane `index` (the main one for anything but 1).
+pub(super) fn lane(app: &LabApp, index: usize) -> &Lane {
+    match (index, &app.compare) {
+        (1, Some(other)) => other,
+        _ => &app.lane,
+    }
+}
+
+fn lane_mut(app: &mut LabApp, index: usize) -> Option<&mut Lane> {
+    match index {
+        0 => Some(&mut app.lane),
+        1 => app.compare.as_mut(),
+        _ => None,
+    }
 }
 
 /// Tessellates `shapes` into one mesh, culled to `clip`, as egui would each frame.
@@ -96,29 +176,26 @@ fn tessellate(ctx: &egui::Context, shapes: Vec<egui::Shape>, clip: egui::Rect) -
     mesh
 }
 
-fn draw_structure(app: &LabApp, wp: &mut WorldPainter<'_>) {
-    let Some(built) = &app.built else { return };
-    if !app.display.structure {
-        return;
-    }
+fn draw_structure(lane: &Lane, max_depth: u32, wp: &mut WorldPainter<'_>) {
+    let Some(built) = &lane.built else { return };
     let stroke = Stroke::new(1.0, colors::STRUCTURE);
     let split_stroke = Stroke::new(1.0, colors::STRUCTURE.gamma_multiply(1.6));
-    if app.settings.kind == StructureKind::Grid {
+    if built.settings.kind == StructureKind::Grid {
         draw_grid_lines(&built.outline, wp, stroke);
         return;
     }
     // Space partitions (k-d tree, quadtree, BSP tree): the cells are what the splits cut out
     // of the root's box, so the root box and the split lines draw them all. BVHs draw every
     // node's volume.
-    let space = !app.settings.kind.is_bvh();
+    let space = !built.settings.kind.is_bvh();
     for node in &built.outline {
-        if node.depth > app.display.max_depth {
+        if node.depth > max_depth {
             continue;
         }
         if !space || node.parent.is_none() {
             wp.node_shape(&node.shape, stroke);
         }
-        if node.splits.is_empty() || node.depth >= app.display.max_depth {
+        if node.splits.is_empty() || node.depth >= max_depth {
             continue;
         }
         let region = node.shape.aabb();
@@ -160,17 +237,16 @@ fn draw_grid_lines(cells: &[bvhlab::NodeOutline<Vec2>], wp: &mut WorldPainter<'_
 }
 
 /// The nodes the query visited, culled and pruned, and the primitives it tested.
-fn draw_marks(app: &LabApp, wp: &mut WorldPainter<'_>) {
-    let (Some(built), Some(marks)) = (&app.built, &app.marks) else {
+fn draw_marks(lane: &Lane, max_depth: u32, wp: &mut WorldPainter<'_>) {
+    let (Some(built), Some(marks)) = (&lane.built, lane.marks()) else {
         return;
     };
-    if !app.display.query_marks {
-        return;
-    }
     for (i, mark) in marks.nodes.iter().enumerate() {
         let Some(mark) = mark else { continue };
-        let node = &built.outline[i];
-        if node.depth > app.display.max_depth {
+        let Some(node) = built.outline.get(i) else {
+            continue;
+        };
+        if node.depth > max_depth {
             continue;
         }
         let color = match mark {
@@ -213,8 +289,8 @@ fn ancestor_half_planes(
     out
 }
 
-fn draw_scene(app: &LabApp, wp: &mut WorldPainter<'_>) {
-    let built = app.built.as_ref();
+fn draw_scene(app: &LabApp, lane: &Lane, wp: &mut WorldPainter<'_>) {
+    let built = lane.built.as_ref();
     let leaf_colours = app.display.leaf_colours && built.is_some();
     let mut prim = 0usize;
     for (i, shape) in app.scene.shapes().iter().enumerate() {
@@ -240,7 +316,7 @@ fn draw_scene(app: &LabApp, wp: &mut WorldPainter<'_>) {
 }
 
 /// The far end of the ray on screen: where it leaves the visible part of the world.
-fn visible_end(ray: &Ray2, view: &crate::view::View) -> Vec2 {
+fn visible_end(ray: &Ray2, view: &View) -> Vec2 {
     let (lo, hi) = view.visible_world();
     let visible = Aabb2::new(lo, hi);
     let t = visible
@@ -250,15 +326,17 @@ fn visible_end(ray: &Ray2, view: &crate::view::View) -> Vec2 {
     ray.at(t)
 }
 
-fn draw_queries(app: &LabApp, wp: &mut WorldPainter<'_>, fonts: &egui::Painter) {
+fn draw_queries(app: &LabApp, lane: &Lane, wp: &mut WorldPainter<'_>, fonts: &egui::Painter) {
+    let live = app.playback.at_end;
     if let Some(handles) = app.ray {
         if let Ok(ray) = handles.ray() {
             let end = visible_end(&ray, wp.view);
             wp.line(ray.origin(), end, Stroke::new(2.0, colors::QUERY));
-            if let Some(hit) = app
-                .ray_outcome
-                .as_ref()
-                .and_then(crate::query::RayOutcome::hit_point)
+            if live
+                && let Some(hit) = lane
+                    .ray_outcome
+                    .as_ref()
+                    .and_then(crate::query::RayOutcome::hit_point)
             {
                 wp.dot(hit, 6.0, colors::ANSWER);
             }
@@ -268,7 +346,7 @@ fn draw_queries(app: &LabApp, wp: &mut WorldPainter<'_>, fonts: &egui::Painter) 
         wp.ring(handles.target, 5.0, Stroke::new(2.0, colors::QUERY));
         wp.text(fonts, handles.target, " s", colors::QUERY);
     }
-    if let Some(outcome) = &app.point_outcome {
+    if let Some(outcome) = lane.point_outcome.as_ref().filter(|_| live) {
         for (rank, n) in outcome.nearest.iter().enumerate() {
             let stroke = Stroke::new(if rank == 0 { 2.0 } else { 1.0 }, colors::ANSWER);
             wp.line(outcome.point, n.point, stroke);

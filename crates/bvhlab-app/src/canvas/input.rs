@@ -77,7 +77,7 @@ pub(super) fn handle_tool(app: &mut LabApp, ui: &egui::Ui, response: &egui::Resp
                 && let Some(p) = input.pointer
             {
                 app.point = Some(p);
-                app.marks_from_ray = false;
+                app.ask_about_point();
             }
         }
         Tool::Segment => segment_tool(app, &input),
@@ -124,7 +124,7 @@ fn ray_tool(app: &mut LabApp, input: &Input) {
             RayEnd::Origin => ray.origin = p,
             RayEnd::Target => ray.target = p,
         }
-        app.marks_from_ray = true;
+        app.ask_about_ray();
     }
 }
 

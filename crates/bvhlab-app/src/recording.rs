@@ -1,0 +1,248 @@
+//! One query or build, recorded for playback: every event the core reported, its answer and
+//! cost, and brute force's answer and cost for the same question.
+//!
+//! A recording is made once per question (task, variant, ray or point, scene, settings) and
+//! replayed by [`crate::playback`]; dragging the ray re-records it.
+
+use bvhlab::glam::Vec2;
+use bvhlab::structure::RangeShape;
+use bvhlab::structure::bvh::SplitRecord;
+use bvhlab::{Event, Hit, Nearest, QueryCost, Ray2, Recorder, SpatialIndex, Sphere2, Traced};
+
+use crate::lane::Built2d;
+use crate::pseudocode::{Task, Variant};
+use crate::structures::BuildSettings;
+
+/// The question: everything a recording depends on besides the structure.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Question {
+    /// What to step through.
+    pub task: Task,
+    /// Which version of the algorithm.
+    pub variant: Variant,
+    /// The ray, for ray tasks.
+    pub ray: Option<Ray2>,
+    /// The query point, for point tasks.
+    pub point: Option<Vec2>,
+    /// How many nearest primitives.
+    pub k: usize,
+    /// The range query's radius around the point.
+    pub radius: f32,
+}
+
+/// A query's or build's answer, in a form the panels can print and compare.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Answer {
+    /// First or any hit.
+    Hit(Option<Hit>),
+    /// All hits, nearest first.
+    Hits(Vec<Hit>),
+    /// The k nearest, nearest first.
+    Nearest(Vec<Nearest<Vec2>>),
+    /// The primitives in the range, ascending.
+    Indices(Vec<usize>),
+    /// A build: how many nodes it made.
+    Nodes(usize),
+}
+
+/// A recorded query or build.
+#[derive(Clone, Debug)]
+pub struct Recording {
+    /// The question it answers.
+    pub question: Question,
+    /// The scene revision and settings it was recorded on.
+    pub on: (u64, BuildSettings),
+    /// Every event, in order.
+    pub events: Vec<Event<Vec2>>,
+    /// The structure's answer.
+    pub answer: Answer,
+    /// What the structure's answer cost (the core's own count).
+    pub cost: QueryCost,
+    /// Brute force's answer (none for builds).
+    pub brute_answer: Option<Answer>,
+    /// What brute force cost.
+    pub brute_cost: QueryCost,
+    /// A BVH build's split decisions, with their SAH cost curves.
+    pub splits: Vec<SplitRecord>,
+    /// Every variant of the algorithm that exists here, with its total cost, so the panel
+    /// can show what the slides' version costs beside the full one.
+    pub variant_costs: Vec<(Variant, QueryCost)>,
+}
+
+impl Recording {
+    /// Records `question` on `built`.
+    ///
+    /// # Errors
+    /// Why the question cannot be asked: no ray or point yet, or a variant that does not
+    /// exist for this structure.
+    pub fn record(built: &Built2d, question: Question) -> Result<Self, String> {
+        let on = (built.revision, built.settings);
+        if question.task == Task::Build {
+            let mut recorder = Recorder::default();
+            let (_, splits) = crate::structures::Built::build_observed(
+                &built.prims.segments,
+                &built.settings,
+                &mut recorder,
+                true,
+            );
+            return Ok(Self {
+                question,
+                on,
+                events: recorder.events,
+                answer: Answer::Nodes(built.outline.len()),
+                cost: QueryCost::default(),
+                brute_answer: None,
+                brute_cost: QueryCost::default(),
+                splits,
+                variant_costs: Vec::new(),
+            });
+        }
+        let mut recorder = Recorder::default();
+        let traced = ask(built, &question, question.variant, &mut recorder)?;
+        let brute = ask_brute(built, &question)?;
+        let variant_costs = crate::pseudocode::variants(built.settings.kind, question.task)
+            .into_iter()
+            .filter_map(|v| {
+                let cost = if v == question.variant {
+                    traced.cost
+                } else {
+                    ask(built, &question, v, &mut ()).ok()?.cost
+                };
+                Some((v, cost))
+            })
+            .collect();
+        Ok(Self {
+            question,
+            on,
+            events: recorder.events,
+            answer: traced.answer,
+            cost: traced.cost,
+            brute_answer: Some(brute.answer),
+            brute_cost: brute.cost,
+            splits: Vec::new(),
+            variant_costs,
+        })
+    }
+
+    /// Whether the structure's answer is brute force's (builds always agree). An any-hit
+    /// query may find any hit: it agrees when both find one or neither does.
+    pub fn agrees(&self) -> bool {
+        match (&self.answer, &self.brute_answer) {
+            (_, None) => true,
+            (Answer::Hit(a), Some(Answer::Hit(b))) if self.question.task == Task::AnyHit => {
+                a.is_some() == b.is_some()
+            }
+            (a, Some(b)) => a == b,
+        }
+    }
+}
+
+/// The ray and point of a question, or why they are missing.
+fn inputs(question: &Question) -> Result<(Option<Ray2>, Option<Vec2>), String> {
+    match question.task {
+        Task::FirstHit | Task::AnyHit | Task::AllHits => question
+            .ray
+            .map(|r| (Some(r), None))
+            .ok_or_else(|| "Draw a ray first (Ray tool: drag on the canvas).".to_owned()),
+        Task::Nearest | Task::Range => question
+            .point
+            .map(|p| (None, Some(p)))
+            .ok_or_else(|| "Place a query point first (Point tool: click the canvas).".to_owned()),
+        Task::Build => Ok((None, None)),
+    }
+}
+
+/// The range query's shape: a disc of `radius` around the point.
+fn disc(point: Vec2, radius: f32) -> Result<RangeShape<Vec2>, String> {
+    if radius.is_finite() && radius >= 0.0 {
+        Ok(RangeShape::Ball(Sphere2::new(point, radius)))
+    } else {
+        Err(format!("The range radius {radius} is not a finite length."))
+    }
+}
+
+/// Asks the structure, with the variant's algorithm.
+fn ask<O: bvhlab::Observer<Vec2>>(
+    built: &Built2d,
+    question: &Question,
+    variant: Variant,
+    observer: &mut O,
+) -> Result<Traced<Answer>, String> {
+    let (ray, point) = inputs(question)?;
+    let s = &built.structure;
+    let wrap = |t: Traced<Answer>| Ok(t);
+    match (question.task, variant, ray, point) {
+        (Task::FirstHit, Variant::Full, Some(r), _) => {
+            wrap(map(s.ray_first_hit(&r, observer), Answer::Hit))
+        }
+        (Task::FirstHit, Variant::Lecture, Some(r), _) => s
+            .lecture_intersect(&r, observer)
+            .map(|t| map(t, Answer::Hit))
+            .ok_or_else(|| not_offered(built, question.task, variant)),
+        (Task::AnyHit, Variant::Full, Some(r), _) => {
+            wrap(map(s.ray_any_hit(&r, observer), Answer::Hit))
+        }
+        (Task::AllHits, Variant::Full, Some(r), _) => {
+            wrap(map(s.ray_all_hits(&r, observer), Answer::Hits))
+        }
+        (Task::Nearest, Variant::Full, _, Some(p)) => wrap(map(
+            s.k_nearest(p, question.k.max(1), observer),
+            Answer::Nearest,
+        )),
+        (Task::Nearest, Variant::Lecture | Variant::LecturePruned, _, Some(p)) => s
+            .lecture_min_distance(p, variant == Variant::LecturePruned, observer)
+            .map(|t| map(t, |n| Answer::Nearest(n.into_iter().collect())))
+            .ok_or_else(|| not_offered(built, question.task, variant)),
+        (Task::Range, Variant::Full, _, Some(p)) => {
+            let shape = disc(p, question.radius)?;
+            wrap(map(s.range(&shape, observer), Answer::Indices))
+        }
+        _ => Err(not_offered(built, question.task, variant)),
+    }
+}
+
+fn not_offered(built: &Built2d, task: Task, variant: Variant) -> String {
+    format!(
+        "The {variant:?} version of {task:?} exists only for BVHs, not for the {}.",
+        built.settings.kind.label()
+    )
+}
+
+fn map<T>(traced: Traced<T>, f: impl FnOnce(T) -> Answer) -> Traced<Answer> {
+    Traced {
+        answer: f(traced.answer),
+        cost: traced.cost,
+    }
+}
+
+/// Asks brute force the same question. The lecture's nearest variants find one primitive,
+/// so brute force is asked for one too.
+fn ask_brute(built: &Built2d, question: &Question) -> Result<Traced<Answer>, String> {
+    let (ray, point) = inputs(question)?;
+    let b = &built.brute;
+    let k = if question.variant == Variant::Full {
+        question.k.max(1)
+    } else {
+        1
+    };
+    Ok(match (question.task, ray, point) {
+        (Task::FirstHit, Some(r), _) => map(
+            b.ray_first_hit_observed(&r, f32::INFINITY, &mut ()),
+            Answer::Hit,
+        ),
+        (Task::AnyHit, Some(r), _) => map(
+            b.ray_any_hit_observed(&r, f32::INFINITY, &mut ()),
+            Answer::Hit,
+        ),
+        (Task::AllHits, Some(r), _) => map(
+            b.ray_all_hits_observed(&r, f32::INFINITY, &mut ()),
+            Answer::Hits,
+        ),
+        (Task::Nearest, _, Some(p)) => map(b.k_nearest_observed(p, k, &mut ()), Answer::Nearest),
+        (Task::Range, _, Some(p)) => map(
+            b.range_observed(&disc(p, question.radius)?, &mut ()),
+            Answer::Indices,
+        ),
+        _ => return Err("Nothing to compare.".to_owned()),
+    })
+}

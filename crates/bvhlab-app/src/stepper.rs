@@ -1,0 +1,379 @@
+//! The "Step through" panel: what to step through, the transport, the pseudocode with the
+//! current line, the counters against brute force, the stack or queue, the best so far, and
+//! for builds the split and its SAH cost curve.
+
+use egui::{Color32, RichText};
+
+use crate::app::LabApp;
+use crate::lane::Lane;
+use crate::paint::colors;
+use crate::playback::{Counters, Frontier, Snapshot, describe};
+use crate::pseudocode::{Task, Variant};
+use crate::structures::StructureKind;
+
+/// Every task, in menu order, with its label.
+pub const TASKS: [(Task, &str); 6] = [
+    (Task::FirstHit, "ray: first hit"),
+    (Task::AnyHit, "ray: any hit"),
+    (Task::AllHits, "ray: all hits"),
+    (Task::Nearest, "point: k nearest"),
+    (Task::Range, "point: within a radius"),
+    (Task::Build, "build the structure"),
+];
+
+/// A variant's label.
+pub fn variant_label(v: Variant) -> &'static str {
+    match v {
+        Variant::Full => "full (near first, pruning)",
+        Variant::Lecture => "the slides' version",
+        Variant::LecturePruned => "the slides' + pruning",
+    }
+}
+
+/// The label of a task.
+pub fn task_label(task: Task) -> &'static str {
+    TASKS
+        .iter()
+        .find(|(t, _)| *t == task)
+        .map_or("?", |(_, l)| *l)
+}
+
+/// The panel.
+pub fn stepper(app: &mut LabApp, ui: &mut egui::Ui) {
+    ui.heading("Step through");
+    task_picker(app, ui);
+    compare_picker(app, ui);
+    ui.separator();
+    transport(app, ui);
+    ui.separator();
+    let lanes: Vec<&Lane> = app.lanes().collect();
+    for (i, lane) in lanes.iter().enumerate() {
+        if lanes.len() > 1 {
+            ui.label(
+                RichText::new(lane.settings.kind.label())
+                    .strong()
+                    .color(colors::QUERY),
+            );
+        }
+        lane_state(app, lane, i, ui);
+        ui.separator();
+    }
+}
+
+/// Chooses what playback steps through, and the algorithm's variant.
+pub fn task_picker(app: &mut LabApp, ui: &mut egui::Ui) {
+    egui::ComboBox::from_label("step through")
+        .selected_text(task_label(app.task))
+        .show_ui(ui, |ui| {
+            for (task, label) in TASKS {
+                ui.selectable_value(&mut app.task, task, label);
+            }
+        });
+    let variants = crate::pseudocode::variants(app.lane.settings.kind, app.task);
+    if variants.len() > 1 {
+        ui.horizontal_wrapped(|ui| {
+            for v in variants {
+                ui.radio_value(&mut app.variant, v, variant_label(v));
+            }
+        });
+    }
+    if app.task == Task::Range {
+        ui.add(
+            egui::Slider::new(&mut app.radius, 0.0..=50.0)
+                .logarithmic(true)
+                .text("radius"),
+        );
+    }
+}
+
+fn compare_picker(app: &mut LabApp, ui: &mut egui::Ui) {
+    ui.horizontal(|ui| {
+        let mut on = app.compare.is_some();
+        if ui.checkbox(&mut on, "compare with").changed() {
+            app.compare = on.then(|| {
+                let mut settings = app.lane.settings;
+                settings.kind = if settings.kind == StructureKind::SphereTree {
+                    StructureKind::AabbTree
+                } else {
+                    StructureKind::SphereTree
+                };
+                Lane::new(settings)
+            });
+        }
+        if let Some(other) = &mut app.compare {
+            egui::ComboBox::from_id_salt("compare kind")
+                .selected_text(other.settings.kind.label())
+                .show_ui(ui, |ui| {
+                    for kind in StructureKind::ALL {
+                        ui.selectable_value(&mut other.settings.kind, kind, kind.label());
+                    }
+                });
+        }
+    });
+}
+
+fn transport(app: &mut LabApp, ui: &mut egui::Ui) {
+    let len = app.steps();
+    let p = &mut app.playback;
+    ui.horizontal(|ui| {
+        if ui.button("|<").on_hover_text("to the start").clicked() {
+            p.go(0, len);
+        }
+        if ui.button("<").on_hover_text("one step back").clicked() {
+            p.playing = false;
+            p.go(p.step.saturating_sub(1), len);
+        }
+        let play = if p.playing { "pause" } else { "play" };
+        if ui.button(play).clicked() {
+            if p.playing {
+                p.playing = false;
+            } else {
+                p.play(len);
+            }
+        }
+        if ui.button(">").on_hover_text("one step forward").clicked() {
+            p.playing = false;
+            p.go(p.step + 1, len);
+        }
+        if ui.button(">|").on_hover_text("to the end (live)").clicked() {
+            p.go(len, len);
+        }
+    });
+    let mut step = if p.at_end { len } else { p.step };
+    let slider = egui::Slider::new(&mut step, 0..=len).text(format!("step of {len}"));
+    if ui.add(slider).changed() {
+        p.playing = false;
+        p.go(step, len);
+    }
+    ui.add(
+        egui::Slider::new(&mut p.speed, 0.5..=200.0)
+            .logarithmic(true)
+            .text("steps per second"),
+    );
+}
+
+fn lane_state(app: &LabApp, lane: &Lane, index: usize, ui: &mut egui::Ui) {
+    let rec = match &lane.recording {
+        Some(Ok(rec)) => rec,
+        Some(Err(why)) => {
+            ui.colored_label(colors::PRUNED, why);
+            return;
+        }
+        None => return,
+    };
+    let Some(snap) = &lane.snapshot else { return };
+    let kind = lane.settings.kind;
+    let q = rec.question;
+    let line = snap
+        .step
+        .checked_sub(1)
+        .and_then(|i| crate::pseudocode::line_of(kind, q.task, q.variant, &rec.events, i));
+    ui.label(match &snap.event {
+        Some(e) => format!("step {}: {}", snap.step, describe(e)),
+        None => format!("step 0 of {}: nothing done yet", rec.events.len()),
+    });
+    if let Some(code) = crate::pseudocode::pseudocode(kind, q.task, q.variant) {
+        pseudocode_view(code, line, index, ui);
+    }
+    counters_table(rec, snap, index, ui);
+    if rec.variant_costs.len() > 1 {
+        for (v, c) in &rec.variant_costs {
+            ui.label(format!(
+                "{}: {} nodes, {} BV tests, {} primitive tests",
+                variant_label(*v),
+                c.nodes_visited,
+                c.bound_tests,
+                c.prim_tests
+            ));
+        }
+    }
+    frontier_view(snap, ui);
+    best_view(rec.question.task, snap, ui);
+    if q.task == Task::Build {
+        crate::build_view::split_view(lane, snap, ui);
+    }
+    let _ = app;
+}
+
+fn pseudocode_view(
+    code: &crate::pseudocode::Pseudocode,
+    line: Option<usize>,
+    index: usize,
+    ui: &mut egui::Ui,
+) {
+    ui.label(RichText::new(code.title).strong());
+    egui::Frame::new()
+        .fill(Color32::from_rgb(20, 22, 28))
+        .inner_margin(6.0)
+        .show(ui, |ui| {
+            ui.spacing_mut().item_spacing.y = 0.0;
+            for (i, text) in code.lines.iter().enumerate() {
+                let current = line == Some(i);
+                let mut rich = RichText::new(format!("{:>2} {text}", i + 1)).monospace();
+                if current {
+                    rich = rich
+                        .background_color(Color32::from_rgb(70, 60, 20))
+                        .color(Color32::WHITE);
+                }
+                let response = ui.label(rich);
+                if current {
+                    response.scroll_to_me(None);
+                }
+            }
+        });
+    if !code.note.is_empty() {
+        ui.label(RichText::new(code.note).small().weak());
+    }
+    let _ = index;
+}
+
+/// A counter's name, how to read it from [`Counters`], its total and brute force's.
+type CounterRow = (&'static str, fn(&Counters) -> u64, u64, u64);
+
+fn counters_table(
+    rec: &crate::recording::Recording,
+    snap: &Snapshot,
+    index: usize,
+    ui: &mut egui::Ui,
+) {
+    let total = rec.cost;
+    let brute = rec.brute_cost;
+    let build = rec.question.task == Task::Build;
+    egui::Grid::new(("step counters", index))
+        .striped(true)
+        .show(ui, |ui| {
+            ui.label("");
+            ui.label("this step");
+            ui.label("so far");
+            if !build {
+                ui.label("total");
+                ui.label("brute force");
+            }
+            ui.end_row();
+            let rows: [CounterRow; 3] = [
+                (
+                    "nodes visited",
+                    |c| c.nodes,
+                    total.nodes_visited,
+                    brute.nodes_visited,
+                ),
+                (
+                    "BV tests",
+                    |c| c.bound_tests,
+                    total.bound_tests,
+                    brute.bound_tests,
+                ),
+                (
+                    "primitive tests",
+                    |c| c.prim_tests,
+                    total.prim_tests,
+                    brute.prim_tests,
+                ),
+            ];
+            // A range query reports only the volumes it refuses, not every test.
+            let unreported = rec.question.task == Task::Range;
+            for (name, get, t, b) in rows {
+                ui.label(name);
+                if unreported && name == "BV tests" {
+                    ui.label("-");
+                    ui.label("-");
+                } else {
+                    ui.label(get(&snap.this_step).to_string());
+                    ui.label(get(&snap.so_far).to_string());
+                }
+                if !build {
+                    ui.label(t.to_string());
+                    ui.label(b.to_string());
+                }
+                ui.end_row();
+            }
+        });
+    if !build {
+        let (text, color) = if rec.agrees() {
+            ("answer agrees with brute force", colors::VISITED)
+        } else {
+            ("answer DIFFERS from brute force", colors::CULLED)
+        };
+        ui.colored_label(color, text);
+    }
+}
+
+fn frontier_view(snap: &Snapshot, ui: &mut egui::Ui) {
+    const SHOWN: usize = 12;
+    if !snap.cells.is_empty() {
+        let cells: Vec<String> = snap
+            .cells
+            .iter()
+            .rev()
+            .take(SHOWN)
+            .map(|c| format!("({}, {})", c.coords[0], c.coords[1]))
+            .collect();
+        ui.label(format!(
+            "cells along the ray ({}), latest first: {}",
+            snap.cells.len(),
+            cells.join(", ")
+        ));
+    }
+    let Some(kind) = snap.frontier_kind else {
+        return;
+    };
+    let name = match kind {
+        Frontier::Stack => "stack (next first)",
+        Frontier::Queue => "priority queue (nearest first)",
+        Frontier::Calls => "calls still to make (next first)",
+    };
+    let items: Vec<String> = snap
+        .frontier
+        .iter()
+        .take(SHOWN)
+        .map(|p| {
+            if p.key == 0.0 && kind == Frontier::Calls {
+                format!("node {}", p.node.0)
+            } else {
+                format!("node {} ({:.3})", p.node.0, p.key)
+            }
+        })
+        .collect();
+    let more = snap.frontier.len().saturating_sub(SHOWN);
+    let tail = if more > 0 {
+        format!(" … and {more} more")
+    } else {
+        String::new()
+    };
+    ui.colored_label(
+        colors::WAITING,
+        format!(
+            "{name}: {}{tail}",
+            if items.is_empty() {
+                "empty".to_owned()
+            } else {
+                items.join(", ")
+            }
+        ),
+    );
+}
+
+fn best_view(task: Task, snap: &Snapshot, ui: &mut egui::Ui) {
+    let what = match task {
+        Task::FirstHit | Task::AnyHit => "best hit so far",
+        Task::AllHits => "hits so far",
+        Task::Nearest => "nearest so far",
+        Task::Range => "inside so far",
+        Task::Build => return,
+    };
+    if snap.best.is_empty() {
+        ui.label(format!("{what}: none"));
+        return;
+    }
+    let items: Vec<String> = snap
+        .best
+        .iter()
+        .take(8)
+        .map(|(p, v)| match task {
+            Task::Range => format!("#{p}"),
+            Task::Nearest => format!("#{p} at {v:.3}"),
+            _ => format!("#{p} at t = {v:.3}"),
+        })
+        .collect();
+    ui.colored_label(colors::ANSWER, format!("{what}: {}", items.join(", ")));
+}
