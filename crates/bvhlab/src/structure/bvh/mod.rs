@@ -64,14 +64,22 @@
 //! Every query returns its [`QueryCost`](super::QueryCost): `EnterNode`s (overlapping node
 //! pairs) as nodes visited, bound tests (node pair tests), and primitive (pair) tests.
 //!
+//! Beside these, the slides' own recursive queries, literally, for the lab to compare:
+//! [`Bvh::lecture_intersect_observed`] (left child then right, no pruning by the best hit),
+//! [`Bvh::lecture_min_distance_observed`] (every node, no bounding volume tested) and
+//! [`Bvh::lecture_min_distance_pruned_observed`] (pruned, still left then right). They give
+//! the same answers as the real traversals and report the same kinds of events.
+//!
 //! The folder follows parry's split by phase: [`tree`] (layout), `build` with
 //! `split_median` and `split_sah` (construction, whose decisions [`SplitRecord`] keeps),
 //! [`volume`] with `node_aabb`, `node_sphere` and `node_obb` (what a node volume answers,
 //! conservatively), `traverse_ray`, `traverse_nearest`, `traverse_range` and
-//! `traverse_collide` (queries), `stats` and `validate`, and `tests`.
+//! `traverse_collide` (queries), `lecture` (the slides' recursions), `stats` and `validate`,
+//! and `tests`.
 
 mod build;
 mod build_log;
+mod lecture;
 mod node_aabb;
 mod node_obb;
 mod node_sphere;
