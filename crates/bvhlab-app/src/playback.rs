@@ -150,7 +150,8 @@ pub enum Frontier {
     Stack,
     /// A priority queue: the smallest key is taken first (best first).
     Queue,
-    /// Recursion: the call stack of the slides' recursive pseudocode.
+    /// Recursion: the slides' recursive pseudocode (the calls under way are
+    /// [`Snapshot::calls`]).
     Calls,
 }
 
@@ -199,6 +200,9 @@ pub struct Snapshot {
     pub frontier: Vec<Pending>,
     /// How they are kept.
     pub frontier_kind: Option<Frontier>,
+    /// The path from the root to the current node: for the slides' recursive versions, the
+    /// calls under way.
+    pub calls: Vec<NodeId>,
     /// Grid: the cells the ray entered so far, in order.
     pub cells: Vec<CellStep>,
     /// The best answers so far, best first: (primitive, t or distance).
@@ -260,7 +264,9 @@ impl Snapshot {
                         },
                     ));
                 }
-                Event::EnterNode { node, .. } => {
+                Event::EnterNode { node, depth } => {
+                    s.calls.truncate(depth as usize);
+                    s.calls.push(node);
                     waiting.retain(|w| w.2.node != node);
                     last_parent = None;
                 }

@@ -317,6 +317,14 @@ fn frontier_view(snap: &Snapshot, ui: &mut egui::Ui) {
     let Some(kind) = snap.frontier_kind else {
         return;
     };
+    if kind == Frontier::Calls {
+        let path: Vec<String> = snap.calls.iter().map(|n| n.0.to_string()).collect();
+        ui.colored_label(
+            colors::WAITING,
+            format!("calls under way (root first): {}", path.join(" > ")),
+        );
+        return;
+    }
     let name = match kind {
         Frontier::Stack => "stack (next first)",
         Frontier::Queue => "priority queue (nearest first)",

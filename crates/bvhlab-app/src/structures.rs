@@ -263,21 +263,41 @@ impl Built {
     /// The slides' recursive `intersect(bvNode, ray, t)`, for BVHs; `None` for the others.
     pub fn lecture_intersect<O: Observer<Vec2>>(
         &self,
-        _ray: &Ray2,
-        _observer: &mut O,
+        ray: &Ray2,
+        observer: &mut O,
     ) -> Option<Traced<Option<bvhlab::Hit>>> {
-        None
+        let t = f32::INFINITY;
+        match self {
+            Self::SphereTree(s) => Some(s.lecture_intersect_observed(ray, t, observer)),
+            Self::AabbTree(s) => Some(s.lecture_intersect_observed(ray, t, observer)),
+            Self::ObbTree(s) => Some(s.lecture_intersect_observed(ray, t, observer)),
+            _ => None,
+        }
     }
 
     /// The slides' `minDistance(bvNode, point, currentMin)`, for BVHs (with `pruned`, plus
     /// the pruning the slide leaves out); `None` for the others.
     pub fn lecture_min_distance<O: Observer<Vec2>>(
         &self,
-        _point: Vec2,
-        _pruned: bool,
-        _observer: &mut O,
+        point: Vec2,
+        pruned: bool,
+        observer: &mut O,
     ) -> Option<Traced<Option<Nearest<Vec2>>>> {
-        None
+        macro_rules! either {
+            ($s:expr) => {
+                if pruned {
+                    $s.lecture_min_distance_pruned_observed(point, observer)
+                } else {
+                    $s.lecture_min_distance_observed(point, observer)
+                }
+            };
+        }
+        match self {
+            Self::SphereTree(s) => Some(either!(s)),
+            Self::AabbTree(s) => Some(either!(s)),
+            Self::ObbTree(s) => Some(either!(s)),
+            _ => None,
+        }
     }
 
     /// The `k` nearest primitives to `point`, reporting each step to `observer`.

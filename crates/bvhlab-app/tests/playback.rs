@@ -217,3 +217,70 @@ fn builds_make_every_node_of_the_outline_with_its_parent() {
         }
     }
 }
+
+#[test]
+fn the_slides_versions_answer_alike_and_cost_more() {
+    let scene = random_segments(400, 50.0, 3.0, 21);
+    for kind in [
+        StructureKind::SphereTree,
+        StructureKind::AabbTree,
+        StructureKind::ObbTree,
+    ] {
+        let settings = BuildSettings {
+            kind,
+            ..BuildSettings::default()
+        };
+        let built = Built2d::new(&scene, settings);
+        let (mut full_bv, mut lecture_bv, mut pruned_prims, mut unpruned_prims) = (0, 0, 0, 0);
+        for (ray, point) in rays() {
+            for (task, variant) in [
+                (Task::FirstHit, Variant::Lecture),
+                (Task::Nearest, Variant::Lecture),
+                (Task::Nearest, Variant::LecturePruned),
+            ] {
+                let mut q = question(task, ray, point);
+                q.variant = variant;
+                q.k = 1;
+                let rec = Recording::record(&built, q).expect("a BVH offers the slides' version");
+                assert!(rec.agrees(), "{kind:?} {task:?} {variant:?}");
+                let end = Snapshot::at(&rec, kind, rec.events.len(), built.outline.len());
+                assert_eq!(end.so_far.nodes, rec.cost.nodes_visited);
+                assert_eq!(end.so_far.prim_tests, rec.cost.prim_tests);
+                assert_eq!(end.frontier_kind, Some(Frontier::Calls));
+                let full = rec
+                    .variant_costs
+                    .iter()
+                    .find(|(v, _)| *v == Variant::Full)
+                    .expect("the full version's cost is there too")
+                    .1;
+                match (task, variant) {
+                    (Task::FirstHit, _) => {
+                        full_bv += full.bound_tests;
+                        lecture_bv += rec.cost.bound_tests;
+                    }
+                    (_, Variant::Lecture) => {
+                        // The slide's minDistance tests every primitive.
+                        assert_eq!(rec.cost.prim_tests as usize, built.prims.segments.len());
+                        unpruned_prims += rec.cost.prim_tests;
+                    }
+                    _ => pruned_prims += rec.cost.prim_tests,
+                }
+            }
+        }
+        assert!(lecture_bv > full_bv, "{kind:?}: {lecture_bv} vs {full_bv}");
+        assert!(pruned_prims < unpruned_prims, "{kind:?}");
+    }
+    // Other structures have no slides' version, and say so.
+    let built = Built2d::new(
+        &scene,
+        BuildSettings {
+            kind: StructureKind::KdTree,
+            ..BuildSettings::default()
+        },
+    );
+    let (ray, point) = rays()[0];
+    let mut q = question(Task::FirstHit, ray, point);
+    q.variant = Variant::Lecture;
+    let err = Recording::record(&built, q).expect_err("no slides' version for k-d trees");
+    assert!(err.contains("only for BVHs"), "{err}");
+}
