@@ -242,6 +242,41 @@ impl LabApp {
         }
     }
 
+    /// Keyboard playback, when no text field has the focus: `.` one step forward, `,` one
+    /// back, Home and End, Space to play or pause.
+    fn playback_keys(&mut self, ui: &egui::Ui) {
+        if ui.ctx().text_edit_focused() {
+            return;
+        }
+        let len = self.steps();
+        let p = &mut self.playback;
+        let shown = if p.at_end { len } else { p.step };
+        ui.input(|i| {
+            if i.key_pressed(egui::Key::Period) {
+                p.playing = false;
+                p.go(shown + 1, len);
+            }
+            if i.key_pressed(egui::Key::Comma) {
+                p.playing = false;
+                p.go(shown.saturating_sub(1), len);
+            }
+            if i.key_pressed(egui::Key::Home) {
+                p.playing = false;
+                p.go(0, len);
+            }
+            if i.key_pressed(egui::Key::End) {
+                p.go(len, len);
+            }
+            if i.key_pressed(egui::Key::Space) {
+                if p.playing {
+                    p.playing = false;
+                } else {
+                    p.play(len);
+                }
+            }
+        });
+    }
+
     /// The longest recording's length: the last step of playback.
     pub fn steps(&self) -> usize {
         self.lane
@@ -261,6 +296,7 @@ impl LabApp {
         self.linked = self.hovered.take();
         self.clock.tick(Instant::now());
         self.refresh();
+        self.playback_keys(ui);
         if self.playback.advance(dt, self.steps()) {
             self.refresh();
         }

@@ -472,7 +472,10 @@ fn query_section(app: &mut LabApp, ui: &mut egui::Ui) {
         ui.label("Use the Ray tool or the Query point tool on the canvas.");
         return;
     }
-    crate::stepper::task_picker(app, ui);
+    ui.label(format!(
+        "Stepping through: {} (right panel).",
+        crate::stepper::task_label(app.task)
+    ));
     if let Some(marks) = app.lane.marks() {
         ui.horizontal_wrapped(|ui| {
             legend(

@@ -24,6 +24,8 @@ pub struct Report {
     pub query: Option<RayReport>,
     /// The point query, if a point is placed.
     pub nearest: Option<NearestReport>,
+    /// Playback: what is stepped through and where it is, per lane.
+    pub playback: Vec<PlaybackReport>,
     /// The median interval between frames, in milliseconds.
     pub frame_ms: Option<f64>,
     /// The median CPU time per frame (UI, tessellation, draw calls), in milliseconds.
@@ -90,6 +92,87 @@ pub struct NearestReport {
     pub agrees: bool,
 }
 
+/// One lane's playback state.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct PlaybackReport {
+    /// The structure.
+    pub structure: String,
+    /// What is stepped through (`FirstHit`, `Nearest`, `Build`, ...).
+    pub task: String,
+    /// Which version (`Full`, `Lecture`, `LecturePruned`).
+    pub variant: String,
+    /// The step shown (events folded in).
+    pub step: usize,
+    /// The recording's length.
+    pub steps: usize,
+    /// The current node.
+    pub current_node: Option<u32>,
+    /// The highlighted pseudocode line (1-based), if any.
+    pub line: Option<usize>,
+    /// Nodes, bound tests and primitive tests so far.
+    pub so_far: [u64; 3],
+    /// The same for the whole query (the core's count).
+    pub total: [u64; 3],
+    /// Brute force's primitive tests.
+    pub brute_force_tests: u64,
+    /// Whether the answer equals brute force's.
+    pub agrees: bool,
+    /// Why there is no recording (no ray yet, a variant that does not exist...).
+    pub error: Option<String>,
+}
+
+impl PlaybackReport {
+    fn of(lane: &crate::lane::Lane) -> Option<Self> {
+        let structure = lane.settings.kind.label().to_owned();
+        let rec = match lane.recording.as_ref()? {
+            Ok(rec) => rec,
+            Err(why) => {
+                return Some(Self {
+                    structure,
+                    task: String::new(),
+                    variant: String::new(),
+                    step: 0,
+                    steps: 0,
+                    current_node: None,
+                    line: None,
+                    so_far: [0; 3],
+                    total: [0; 3],
+                    brute_force_tests: 0,
+                    agrees: false,
+                    error: Some(why.clone()),
+                });
+            }
+        };
+        let snap = lane.snapshot.as_ref()?;
+        let q = rec.question;
+        let line = snap.step.checked_sub(1).and_then(|i| {
+            crate::pseudocode::line_of(lane.settings.kind, q.task, q.variant, &rec.events, i)
+        });
+        Some(Self {
+            structure,
+            task: format!("{:?}", q.task),
+            variant: format!("{:?}", q.variant),
+            step: snap.step,
+            steps: rec.events.len(),
+            current_node: snap.current.map(|n| n.0),
+            line: line.map(|l| l + 1),
+            so_far: [
+                snap.so_far.nodes,
+                snap.so_far.bound_tests,
+                snap.so_far.prim_tests,
+            ],
+            total: [
+                rec.cost.nodes_visited,
+                rec.cost.bound_tests,
+                rec.cost.prim_tests,
+            ],
+            brute_force_tests: rec.brute_cost.prim_tests,
+            agrees: rec.agrees(),
+            error: None,
+        })
+    }
+}
+
 impl Report {
     /// The report of the lab's current state.
     pub fn of(app: &LabApp) -> Self {
@@ -141,6 +224,7 @@ impl Report {
                 brute_force_tests: o.brute_cost.prim_tests,
                 agrees: o.agrees(),
             }),
+            playback: app.lanes().filter_map(PlaybackReport::of).collect(),
             frame_ms: app.clock.median_ms(),
             cpu_ms: app.clock.median_cpu_ms(),
         }

@@ -209,7 +209,9 @@ fn pseudocode_view(
             ui.spacing_mut().item_spacing.y = 0.0;
             for (i, text) in code.lines.iter().enumerate() {
                 let current = line == Some(i);
-                let mut rich = RichText::new(format!("{:>2} {text}", i + 1)).monospace();
+                // The arrow marks the line for screen readers and tests as well as the eye.
+                let arrow = if current { '>' } else { ' ' };
+                let mut rich = RichText::new(format!("{:>2}{arrow} {text}", i + 1)).monospace();
                 if current {
                     rich = rich
                         .background_color(Color32::from_rgb(70, 60, 20))

@@ -1,0 +1,139 @@
+//! Helpers shared by the headless UI tests: the lab in a harness, and the pointer, keys
+//! and widgets driven as a student drives them.
+#![allow(dead_code, reason = "each test file uses its own subset")]
+
+use bvhlab::Ray2;
+use bvhlab::glam::Vec2;
+use bvhlab_app::LabApp;
+use egui::accesskit::Role;
+use egui::{Event, Key, Modifiers, PointerButton, Pos2, vec2};
+use egui_kittest::Harness;
+use egui_kittest::kittest::{NodeT, Queryable};
+
+/// A tall window, so that the whole control panel (down to the queries) is on screen.
+pub const WINDOW: egui::Vec2 = vec2(1800.0, 1800.0);
+
+/// The lab in a headless harness, after its first frames (the view is fitted to the scene).
+pub fn lab() -> Harness<'static, LabApp> {
+    let mut h = Harness::builder()
+        .with_size(WINDOW)
+        .build_ui_state(|ui, app: &mut LabApp| app.show(ui), LabApp::default());
+    h.run();
+    h
+}
+
+/// Runs until the UI settles, then one more frame: the control panel is drawn before the
+/// canvas, so a change the canvas made in the last frame shows in the panel one frame later.
+pub fn settle(h: &mut Harness<'_, LabApp>) {
+    h.run();
+    h.step();
+}
+
+/// The texts of every label on screen, in layout order.
+pub fn labels(h: &Harness<'_, LabApp>) -> Vec<String> {
+    h.query_all_by_role(Role::Label)
+        .filter_map(|n| n.accesskit_node().value())
+        .collect()
+}
+
+/// The one label containing `part`, or a failure listing what is shown.
+pub fn label_containing(h: &Harness<'_, LabApp>, part: &str) -> String {
+    let all = labels(h);
+    let found: Vec<&String> = all.iter().filter(|l| l.contains(part)).collect();
+    assert_eq!(
+        found.len(),
+        1,
+        "one label containing {part:?}; labels: {all:#?}"
+    );
+    found[0].clone()
+}
+
+/// Whether some label contains `part`.
+pub fn shows(h: &Harness<'_, LabApp>, part: &str) -> bool {
+    labels(h).iter().any(|l| l.contains(part))
+}
+
+/// The screen point of a world point.
+pub fn screen(h: &Harness<'_, LabApp>, p: Vec2) -> Pos2 {
+    h.state().view.to_screen(p)
+}
+
+/// The world point under a screen point.
+pub fn world(h: &Harness<'_, LabApp>, p: Pos2) -> Vec2 {
+    h.state().view.to_world(p)
+}
+
+/// A primary-button drag from `from` to `to`: press, eight moves (one frame each), release.
+pub fn drag(h: &mut Harness<'_, LabApp>, from: Pos2, to: Pos2) {
+    drag_path(h, from, &[to]);
+}
+
+/// A primary-button drag from `from` through `stops` (eight moves to each), released at the
+/// last stop.
+pub fn drag_path(h: &mut Harness<'_, LabApp>, from: Pos2, stops: &[Pos2]) {
+    assert!(
+        h.state().view.rect.contains(from),
+        "the drag starts on the canvas"
+    );
+    h.hover_at(from);
+    h.step();
+    h.drag_at(from);
+    h.step();
+    let mut at = from;
+    for &stop in stops {
+        for i in 1..=8 {
+            h.hover_at(at.lerp(stop, i as f32 / 8.0));
+            h.step();
+        }
+        at = stop;
+    }
+    h.drop_at(at);
+    settle(h);
+}
+
+/// A primary click at `p` (press and release at one point).
+pub fn click_at(h: &mut Harness<'_, LabApp>, p: Pos2) {
+    h.hover_at(p);
+    for pressed in [true, false] {
+        h.event(Event::PointerButton {
+            pos: p,
+            button: PointerButton::Primary,
+            pressed,
+            modifiers: Modifiers::NONE,
+        });
+    }
+    settle(h);
+}
+
+/// Clicks the widget labelled `label`.
+pub fn click(h: &mut Harness<'_, LabApp>, label: &str) {
+    h.get_by_label(label).click();
+    settle(h);
+}
+
+/// Opens the combo box labelled `combo` and picks `option` from it.
+pub fn choose(h: &mut Harness<'_, LabApp>, combo: &str, option: &str) {
+    click(h, combo);
+    click(h, option);
+}
+
+/// Presses a key.
+pub fn press(h: &mut Harness<'_, LabApp>, key: Key) {
+    h.key_press(key);
+    settle(h);
+}
+
+/// Drags the default test ray across the default scene (world (0.5, 9.7) toward (20, 11.3)).
+pub fn drag_test_ray(h: &mut Harness<'_, LabApp>) -> Ray2 {
+    let from = screen(h, Vec2::new(0.5, 9.7));
+    let to = screen(h, Vec2::new(20.0, 11.3));
+    drag(h, from, to);
+    let expected = Ray2::through(world(h, from), world(h, to)).expect("a proper ray");
+    let handles = h.state().ray.expect("the drag placed a ray");
+    assert_eq!(
+        handles.ray().expect("valid"),
+        expected,
+        "the ray runs from the press to the release"
+    );
+    expected
+}

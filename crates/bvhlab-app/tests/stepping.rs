@@ -1,0 +1,208 @@
+//! Headless UI tests of playback (issue 5): a student steps through a traversal with the
+//! panel's buttons, and at each step the panel's sentence, highlighted pseudocode line,
+//! current node and counters are checked against the core's own event stream, counted here
+//! independently; at the end the counters equal the core's cost and brute force's.
+
+use bvhlab::structure::PrimitiveResult;
+use bvhlab::{Event, NodeId};
+use bvhlab_app::LabApp;
+use bvhlab_app::playback::describe;
+use bvhlab_app::pseudocode::{Task, Variant};
+use bvhlab_app::structures::StructureKind;
+use egui_kittest::Harness;
+
+mod common;
+use common::*;
+
+/// The "Step through" panel's counters: (name, this step, so far, total, brute force).
+fn step_counters(h: &Harness<'_, LabApp>) -> Vec<(String, String, String, String, String)> {
+    let all = labels(h);
+    let start = all
+        .iter()
+        .position(|l| l == "Step through")
+        .expect("the panel is shown");
+    let all = &all[start..];
+    let mut rows = Vec::new();
+    for (i, l) in all.iter().enumerate() {
+        if ["nodes visited", "BV tests", "primitive tests"].contains(&l.as_str()) {
+            let at = |j: usize| all.get(i + j).cloned().unwrap_or_default();
+            rows.push((l.clone(), at(1), at(2), at(3), at(4)));
+        }
+    }
+    rows
+}
+
+/// Counts the events of a prefix, as the lecture counts them: nodes entered (cells for a
+/// grid), bounding-volume or plane tests, exact primitive tests (mailboxed ones excluded).
+fn count(events: &[Event<bvhlab::glam::Vec2>]) -> [u64; 3] {
+    let mut c = [0; 3];
+    for e in events {
+        match e {
+            Event::EnterNode { .. } | Event::CellEnter { .. } => c[0] += 1,
+            Event::RayBoundTest { .. }
+            | Event::DistanceBoundTest { .. }
+            | Event::PlaneCrossed { .. } => {
+                c[1] += 1;
+            }
+            Event::PrimitiveTest { result, .. } if *result != PrimitiveResult::AlreadyTested => {
+                c[2] += 1;
+            }
+            _ => {}
+        }
+    }
+    c
+}
+
+/// The node an event names, as the canvas and the tree diagram highlight it.
+fn node_named(e: &Event<bvhlab::glam::Vec2>) -> Option<NodeId> {
+    match *e {
+        Event::EnterNode { node, .. }
+        | Event::RayBoundTest { node, .. }
+        | Event::DistanceBoundTest { node, .. }
+        | Event::Prune { node, .. }
+        | Event::PlaneCrossed { node, .. }
+        | Event::BuildNode { node, .. }
+        | Event::BuildSplit { node, .. }
+        | Event::BuildLeaf { node, .. } => Some(node),
+        Event::CellEnter { cell, .. } => Some(cell),
+        _ => None,
+    }
+}
+
+/// Checks the panel against the recording at the current step.
+fn check_step(h: &Harness<'_, LabApp>, step: usize) {
+    let app = h.state();
+    let rec = app.lane.recorded().expect("recorded");
+    let events = &rec.events[..step];
+    let kind = app.lane.settings.kind;
+    let q = rec.question;
+    // The sentence names the step's event.
+    match events.last() {
+        Some(e) => {
+            label_containing(h, &format!("step {step}: {}", describe(e)));
+        }
+        None => {
+            label_containing(h, "step 0 of ");
+        }
+    }
+    // The highlighted line is the one the event happens at.
+    let code = bvhlab_app::pseudocode::pseudocode(kind, q.task, q.variant).expect("pseudocode");
+    assert!(!code.lines.is_empty(), "{kind:?} has pseudocode");
+    let marked: Vec<String> = labels(h)
+        .into_iter()
+        .filter(|l| {
+            l.len() > 3 && l.as_bytes()[2] == b'>' && l[..2].trim().parse::<usize>().is_ok()
+        })
+        .collect();
+    match step.checked_sub(1) {
+        Some(i) => {
+            let line = bvhlab_app::pseudocode::line_of(kind, q.task, q.variant, &rec.events, i)
+                .expect("every event has a line");
+            let want = format!("{:>2}> {}", line + 1, code.lines[line]);
+            assert_eq!(marked, vec![want], "{kind:?} step {step}");
+        }
+        None => assert!(marked.is_empty(), "no line before the first step"),
+    }
+    // The current node is the last one an event named.
+    let current = events.iter().rev().find_map(node_named);
+    let snap = app.lane.snapshot.as_ref().expect("a snapshot");
+    assert_eq!(snap.current, current, "{kind:?} step {step}");
+    // The counters so far are the events counted here.
+    let [nodes, bvs, prims] = count(events);
+    let rows = step_counters(h);
+    assert_eq!(rows.len(), 3, "{rows:?}");
+    assert_eq!(rows[0].2, nodes.to_string(), "{kind:?} step {step}: nodes");
+    assert_eq!(rows[1].2, bvs.to_string(), "{kind:?} step {step}: BV tests");
+    assert_eq!(
+        rows[2].2,
+        prims.to_string(),
+        "{kind:?} step {step}: primitive tests"
+    );
+    let this = count(&events[step.saturating_sub(1)..step]);
+    assert_eq!(rows[0].1, this[0].to_string());
+    assert_eq!(rows[2].1, this[2].to_string());
+}
+
+fn step_through_a_ray(kind: StructureKind) {
+    let mut h = lab();
+    choose(&mut h, "Structure", kind.label());
+    drag_test_ray(&mut h);
+    assert_eq!(h.state().task, Task::FirstHit);
+    let len = h.state().lane.steps();
+    assert!(len > 3, "{kind:?}: a real traversal has steps ({len})");
+    click(&mut h, "|<");
+    check_step(&h, 0);
+    for step in 1..=len.min(25) {
+        click(&mut h, ">");
+        assert_eq!(h.state().playback.step, step);
+        check_step(&h, step);
+    }
+    // One step back undoes the last step.
+    if len > 2 {
+        let at = h.state().playback.step;
+        click(&mut h, "<");
+        check_step(&h, at - 1);
+    }
+    // The end: the counters are the core's cost, and brute force tested every primitive.
+    click(&mut h, ">|");
+    check_step(&h, len);
+    let app = h.state();
+    let rec = app.lane.recorded().expect("recorded");
+    let rows = step_counters(&h);
+    let prims = app.scene.primitives().segments.len();
+    assert_eq!(rows[0].3, rec.cost.nodes_visited.to_string());
+    assert_eq!(rows[2].3, rec.cost.prim_tests.to_string());
+    assert_eq!(
+        rows[2].4,
+        prims.to_string(),
+        "brute force tests every primitive"
+    );
+    assert!(rec.agrees());
+    assert!(shows(&h, "answer agrees with brute force"));
+}
+
+#[test]
+fn stepping_a_sphere_tree_traversal() {
+    step_through_a_ray(StructureKind::SphereTree);
+}
+
+#[test]
+fn stepping_an_aabb_tree_traversal() {
+    step_through_a_ray(StructureKind::AabbTree);
+}
+
+#[test]
+fn stepping_a_k_d_tree_traversal() {
+    step_through_a_ray(StructureKind::KdTree);
+}
+
+#[test]
+fn stepping_a_grid_traversal() {
+    step_through_a_ray(StructureKind::Grid);
+}
+
+#[test]
+fn the_slides_version_and_the_full_one_are_both_counted() {
+    let mut h = lab();
+    choose(&mut h, "Structure", StructureKind::SphereTree.label());
+    drag_test_ray(&mut h);
+    click(&mut h, "the slides' version");
+    assert_eq!(h.state().question().variant, Variant::Lecture);
+    let len = h.state().lane.steps();
+    click(&mut h, "|<");
+    for step in 1..=len.min(12) {
+        click(&mut h, ">");
+        check_step(&h, step);
+    }
+    let rec = h.state().lane.recorded().expect("recorded");
+    let (full, slides) = (rec.variant_costs[0].1, rec.variant_costs[1].1);
+    assert!(slides.bound_tests > full.bound_tests);
+    assert!(shows(
+        &h,
+        &format!("full (near first, pruning): {} nodes", full.nodes_visited)
+    ));
+    assert!(shows(
+        &h,
+        &format!("the slides' version: {} nodes", slides.nodes_visited)
+    ));
+}
