@@ -16,6 +16,7 @@ pub mod frame_clock;
 pub mod paint;
 pub mod panels;
 pub mod presets;
+pub mod pseudocode;
 pub mod query;
 pub mod report;
 pub mod scene;
