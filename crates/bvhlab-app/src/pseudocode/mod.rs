@@ -1,0 +1,150 @@
+//! The pseudocode panel's data: each algorithm's text, and which line each observer event
+//! happens at.
+//!
+//! The lab steps through a query's or a build's [`Event`]s and shows, beside the canvas, the
+//! algorithm's pseudocode with the current line highlighted. The text uses the lecture's
+//! names and notation (`bvNode`, `ray`, `t`, `currentMin`, `intersect`, `minDistance`), so
+//! the slides and the lab read alike. The [`Variant::Full`] listings describe what the core
+//! really runs, event for event; the [`Variant::Lecture`] listings are the slides' own
+//! pseudocode, with only the lines the slides leave implicit added and marked.
+//!
+//! Files: `listing` (a line's step, and reading an event in context), one file per family
+//! of algorithms (`brute`, `bvh`, `lecture`, `plane` for k-d and BSP trees, `quadtree`,
+//! `grid`) and `build` for the builders.
+
+mod brute;
+mod build;
+mod bvh;
+mod grid;
+mod lecture;
+mod listing;
+mod plane;
+mod quadtree;
+
+use bvhlab::Event;
+use bvhlab::glam::Vec2;
+
+use self::listing::{Classify, Context, Listing};
+use crate::structures::StructureKind;
+
+/// What is being stepped through.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Task {
+    /// The first hit along a ray.
+    FirstHit,
+    /// Some hit along a ray, not necessarily the first (shadow rays): stops at the first
+    /// one found.
+    AnyHit,
+    /// Every hit along a ray.
+    AllHits,
+    /// The k nearest primitives to a point (the lecture's distance query for k = 1).
+    Nearest,
+    /// Every primitive in a box or ball.
+    Range,
+    /// Building the structure.
+    Build,
+}
+
+impl Task {
+    /// Every task, queries first.
+    pub const ALL: [Self; 6] = [
+        Self::FirstHit,
+        Self::AnyHit,
+        Self::AllHits,
+        Self::Nearest,
+        Self::Range,
+        Self::Build,
+    ];
+}
+
+/// Which version of the algorithm.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Variant {
+    /// What the core runs: near-first order, pruning by the best so far.
+    Full,
+    /// The slides' pseudocode, literally (BVH first hit and BVH nearest only).
+    Lecture,
+    /// The slides' minDistance plus the pruning the slide leaves out (BVH nearest only).
+    LecturePruned,
+}
+
+/// One algorithm's pseudocode.
+#[derive(Debug, PartialEq, Eq)]
+pub struct Pseudocode {
+    /// What it is, for the panel's heading.
+    pub title: &'static str,
+    /// The lines, indented with spaces, for a monospace font.
+    pub lines: &'static [&'static str],
+    /// A sentence or two: where it comes from (lecture section, paper) and what the slides
+    /// leave out.
+    pub note: &'static str,
+}
+
+/// An algorithm: its listing, and how it reads its own events.
+struct Algorithm {
+    listing: &'static Listing,
+    classify: Classify,
+}
+
+/// The algorithm `kind` runs for `task`, in `variant`.
+fn algorithm(kind: StructureKind, task: Task, variant: Variant) -> Option<Algorithm> {
+    if task == Task::Build {
+        return (variant == Variant::Full).then(|| build::algorithm(kind));
+    }
+    if variant != Variant::Full {
+        return if kind.is_bvh() {
+            lecture::algorithm(task, variant)
+        } else {
+            None
+        };
+    }
+    match kind {
+        StructureKind::BruteForce => brute::algorithm(task),
+        StructureKind::SphereTree | StructureKind::AabbTree | StructureKind::ObbTree => {
+            bvh::algorithm(task)
+        }
+        StructureKind::Bsp | StructureKind::KdTree => plane::algorithm(task),
+        StructureKind::Quadtree => quadtree::algorithm(task),
+        StructureKind::Grid => grid::algorithm(task),
+    }
+}
+
+/// The pseudocode for a structure, task and variant; `None` when that variant does not exist
+/// for it ([`Variant::Lecture`] and [`Variant::LecturePruned`] exist only for BVH first hit
+/// and nearest; [`Variant::Full`] exists for every structure and task).
+pub fn pseudocode(
+    kind: StructureKind,
+    task: Task,
+    variant: Variant,
+) -> Option<&'static Pseudocode> {
+    algorithm(kind, task, variant).map(|a| &a.listing.code)
+}
+
+/// The variants that exist for `kind` and `task` ([`Variant::Full`] first).
+pub fn variants(kind: StructureKind, task: Task) -> Vec<Variant> {
+    [Variant::Full, Variant::Lecture, Variant::LecturePruned]
+        .into_iter()
+        .filter(|&v| algorithm(kind, task, v).is_some())
+        .collect()
+}
+
+/// The line (an index into [`Pseudocode::lines`]) that `events[step]` happens at, given the
+/// events before it (some events mean different lines depending on what came just before,
+/// e.g. a `RayBoundTest` of the root and of a child). `None` only for an event the algorithm
+/// does not emit (or a `step` past the end, or a variant that does not exist).
+pub fn line_of(
+    kind: StructureKind,
+    task: Task,
+    variant: Variant,
+    events: &[Event<Vec2>],
+    step: usize,
+) -> Option<usize> {
+    let algorithm = algorithm(kind, task, variant)?;
+    let (context, event) = Context::new(events, step)?;
+    algorithm
+        .listing
+        .line((algorithm.classify)(context, event)?)
+}
+
+#[cfg(test)]
+mod tests;

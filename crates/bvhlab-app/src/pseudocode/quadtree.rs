@@ -1,0 +1,215 @@
+//! The quadtree (the 2D octree): what the core's `octree/traverse.rs`, `nearest.rs` and
+//! `range_collide.rs` run.
+//!
+//! A cell is split into four equal squares, and a primitive is listed in every child it
+//! touches, so the queries skip a primitive already tested (mailboxing). Empty leaves are
+//! never queued. (Primitives with a non-finite coordinate sit in no cell; every query tests
+//! them first, as the leaf loop does.)
+
+use bvhlab::glam::Vec2;
+use bvhlab::{Event, structure::PruneReason};
+
+use super::listing::{Classify, Context, Listing, ROOT, Step, listing, primitive_step};
+use super::{Algorithm, Pseudocode, Task};
+
+static FIRST_HIT: Listing = listing!(
+    "Quadtree: first hit, front to back",
+    "Lecture §3: depth first; a ray interacts with a child when the child holds the ray \
+     origin or the ray crosses into it; visit those children nearest first. A hit beyond \
+     its leaf is not final: the search stops only at a cell that begins after the best hit \
+     (children ordered by entry t, as in Revelles, Ureña and Lastra, 2000).",
+    [
+        _          "intersect(quadtree, ray)         // the first hit",
+        _          "    t = inf; hit = null          // the best hit so far",
+        TestRoot   "    [tEnter, tExit] = the ray inside the root square",
+        MissRoot   "    if (the ray misses it) return null",
+        _          "    stack = [(root, tEnter, tExit)]",
+        _          "    while (stack not empty)",
+        Enter      "        (cell, tEnter, tExit) = stack.pop()",
+        SkipPopped "        if (tEnter > t) continue  // behind the best hit",
+        _          "        if (cell is a leaf)",
+        _          "            for (p in cell.primitives)",
+        Mailbox    "                if (p was tested already) skip p  // mailbox",
+        TestPrim   "                if (p.intersect(ray, tp))",
+        HitBeyond  "                    if (tp > tExit) not final yet  // beyond the cell",
+        NewBest    "                    if (tp < t) { t = tp; hit = p }",
+        _          "        else",
+        _          "            for (c in the four children)",
+        TestChild  "                [tc, tcExit] = the ray inside c",
+        SkipChild  "                if (the ray misses c) skip c",
+        Queue      "            push the non-empty ones, smallest tc on top",
+        _          "    return hit",
+    ]
+);
+
+static ANY_HIT: Listing = listing!(
+    "Quadtree: any hit, front to back",
+    "The first-hit traversal without the best hit: it stops at the first hit found, which \
+     is all a shadow ray needs.",
+    [
+        _          "anyHit(quadtree, ray, tMax)      // e.g. a shadow ray",
+        TestRoot   "    [tEnter, tExit] = the ray inside the root square",
+        MissRoot   "    if (the ray misses it) return null",
+        _          "    stack = [(root, tEnter, tExit)]",
+        _          "    while (stack not empty)",
+        Enter      "        (cell, tEnter, tExit) = stack.pop()",
+        SkipPopped "        if (tEnter > tMax) continue",
+        _          "        if (cell is a leaf)",
+        _          "            for (p in cell.primitives)",
+        Mailbox    "                if (p was tested already) skip p  // mailbox",
+        TestPrim   "                if (p.intersect(ray, tp) && tp <= tMax)",
+        _          "                    return p",
+        _          "        else",
+        _          "            for (c in the four children)",
+        TestChild  "                [tc, tcExit] = the ray inside c",
+        SkipChild  "                if (the ray misses c) skip c",
+        Queue      "            push the non-empty ones, smallest tc on top",
+        _          "    return null",
+    ]
+);
+
+static ALL_HITS: Listing = listing!(
+    "Quadtree: all hits, front to back",
+    "The first-hit traversal without the best hit: every cell the ray reaches before tMax \
+     is visited; the mailbox keeps a primitive listed in several cells from being reported \
+     twice.",
+    [
+        _          "allHits(quadtree, ray, tMax)",
+        _          "    hits = []",
+        TestRoot   "    [tEnter, tExit] = the ray inside the root square",
+        MissRoot   "    if (the ray misses it) return hits",
+        _          "    stack = [(root, tEnter, tExit)]",
+        _          "    while (stack not empty)",
+        Enter      "        (cell, tEnter, tExit) = stack.pop()",
+        SkipPopped "        if (tEnter > tMax) continue",
+        _          "        if (cell is a leaf)",
+        _          "            for (p in cell.primitives)",
+        Mailbox    "                if (p was tested already) skip p  // mailbox",
+        TestPrim   "                if (p.intersect(ray, tp) && tp <= tMax)",
+        _          "                    hits.add(p, tp)",
+        _          "        else",
+        _          "            for (c in the four children)",
+        TestChild  "                [tc, tcExit] = the ray inside c",
+        SkipChild  "                if (the ray misses c) skip c",
+        Queue      "            push the non-empty ones, smallest tc on top",
+        _          "    return hits sorted by t",
+    ]
+);
+
+static NEAREST: Listing = listing!(
+    "Quadtree: k nearest to a point (best first)",
+    "Lecture §3: descend to the cell of the query point, then search outward, skipping cells \
+     farther than the best so far. A priority queue takes cells nearest first (Hjaltason and \
+     Samet, 1999), so the search ends at the first cell no nearer than currentMin.",
+    [
+        _          "kNearest(quadtree, point, k)     // best first",
+        _          "    best = []                    // the k nearest so far",
+        _          "    currentMin = inf             // the k-th best distance",
+        TestRoot   "    d = distance(point, root square)",
+        _          "    queue = [(root, d)]          // a priority queue",
+        _          "    while (queue not empty)",
+        Enter      "        (cell, d) = queue.popNearest()",
+        SkipPopped "        if (d > currentMin) return best  // the rest is farther",
+        _          "        if (cell is a leaf)",
+        _          "            for (p in cell.primitives)",
+        Mailbox    "                if (p was measured already) skip p  // mailbox",
+        TestPrim   "                dp = p.distance(point)",
+        _          "                if (dp < currentMin)",
+        NewBest    "                    add p to best (keep k), update currentMin",
+        _          "        else",
+        _          "            for (c in the four children)",
+        TestChild  "                dc = distance(point, c's square)",
+        _          "            for (c in the non-empty children, nearest first)",
+        SkipChild  "                if (dc > currentMin) skip c  // nothing nearer",
+        Queue      "                else queue.push(c, dc)",
+        _          "    return best",
+    ]
+);
+
+static RANGE: Listing = listing!(
+    "Quadtree: primitives in a range",
+    "Descend into every cell the region overlaps; in the leaves, test each primitive exactly, \
+     once (a primitive listed in several cells is mailboxed).",
+    [
+        _          "range(quadtree, region)          // a box or a ball",
+        _          "    found = []",
+        _          "    stack = [root]",
+        _          "    while (stack not empty)",
+        Enter      "        cell = stack.pop()",
+        SkipPopped "        if (cell's square misses region) continue",
+        _          "        if (cell is a leaf)",
+        _          "            for (p in cell.primitives)",
+        Mailbox    "                if (p was tested already) skip p  // mailbox",
+        TestPrim   "                if (p overlaps region) found.add(p)",
+        _          "        else",
+        _          "            push the four children  // the first on top",
+        _          "    return found",
+    ]
+);
+
+/// The ray queries' events: every cell's test is followed at once by its miss; the prunes
+/// of cells beyond the best hit (or `tMax`) happen when they are popped.
+fn classify_ray(cx: Context<'_>, event: &Event<Vec2>) -> Option<Step> {
+    Some(match *event {
+        Event::RayBoundTest { node, .. } if node == ROOT => Step::TestRoot,
+        Event::RayBoundTest { .. } => Step::TestChild,
+        Event::Prune {
+            node,
+            reason: PruneReason::RayMissed,
+        } if cx.just_tested(node) => {
+            if node == ROOT {
+                Step::MissRoot
+            } else {
+                Step::SkipChild
+            }
+        }
+        Event::Prune { .. } => Step::SkipPopped,
+        Event::EnterNode { .. } => Step::Enter,
+        Event::ChildQueued { .. } => Step::Queue,
+        Event::PrimitiveTest { result, .. } => primitive_step(result),
+        Event::NewBest { .. } => Step::NewBest,
+        Event::HitBeyondRegion { .. } => Step::HitBeyond,
+        _ => return None,
+    })
+}
+
+/// The nearest query's events: the four children are measured first, then queued or pruned
+/// nearest first, so a child's prune is one whose distance was measured since the last cell
+/// was entered; any other prune is of a popped cell, and ends the search.
+fn classify_nearest(cx: Context<'_>, event: &Event<Vec2>) -> Option<Step> {
+    Some(match *event {
+        Event::DistanceBoundTest { node, .. } if node == ROOT => Step::TestRoot,
+        Event::DistanceBoundTest { .. } => Step::TestChild,
+        Event::Prune { node, .. } if node != ROOT && cx.tested_since_enter(node) => Step::SkipChild,
+        Event::Prune { .. } => Step::SkipPopped,
+        Event::EnterNode { .. } => Step::Enter,
+        Event::ChildQueued { .. } => Step::Queue,
+        Event::PrimitiveTest { result, .. } => primitive_step(result),
+        Event::NewBest { .. } => Step::NewBest,
+        _ => return None,
+    })
+}
+
+/// The range query's events: a popped cell is tested silently and reported only when the
+/// region misses it; children are pushed without events.
+fn classify_range(_: Context<'_>, event: &Event<Vec2>) -> Option<Step> {
+    Some(match *event {
+        Event::Prune { .. } => Step::SkipPopped,
+        Event::EnterNode { .. } => Step::Enter,
+        Event::PrimitiveTest { result, .. } => primitive_step(result),
+        _ => return None,
+    })
+}
+
+/// The core's quadtree query for `task`; `None` for the build (see [`super::build`]).
+pub(super) fn algorithm(task: Task) -> Option<Algorithm> {
+    let (listing, classify): (_, Classify) = match task {
+        Task::FirstHit => (&FIRST_HIT, classify_ray),
+        Task::AnyHit => (&ANY_HIT, classify_ray),
+        Task::AllHits => (&ALL_HITS, classify_ray),
+        Task::Nearest => (&NEAREST, classify_nearest),
+        Task::Range => (&RANGE, classify_range),
+        Task::Build => return None,
+    };
+    Some(Algorithm { listing, classify })
+}
