@@ -247,6 +247,12 @@ fn the_slides_versions_answer_alike_and_cost_more() {
                 assert_eq!(end.so_far.nodes, rec.cost.nodes_visited);
                 assert_eq!(end.so_far.prim_tests, rec.cost.prim_tests);
                 assert_eq!(end.frontier_kind, Some(Frontier::Calls));
+                // The core's own recursion maps onto the slide's lines, step by step.
+                for step in 0..rec.events.len() {
+                    let line =
+                        bvhlab_app::pseudocode::line_of(kind, task, variant, &rec.events, step);
+                    assert!(line.is_some(), "{kind:?} {task:?} {variant:?} step {step}");
+                }
                 let full = rec
                     .variant_costs
                     .iter()
