@@ -312,7 +312,7 @@ impl LabApp {
         egui::Panel::bottom("status").show(ui, |ui| crate::panels::status_line(self, ui));
         egui::Panel::right("stepper")
             .resizable(true)
-            .default_size(380.0)
+            .default_size(440.0)
             .show(ui, |ui| {
                 egui::ScrollArea::vertical().show(ui, |ui| crate::stepper::stepper(self, ui));
             });

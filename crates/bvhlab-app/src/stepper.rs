@@ -206,22 +206,9 @@ fn pseudocode_view(
         .fill(Color32::from_rgb(20, 22, 28))
         .inner_margin(6.0)
         .show(ui, |ui| {
-            ui.spacing_mut().item_spacing.y = 0.0;
-            for (i, text) in code.lines.iter().enumerate() {
-                let current = line == Some(i);
-                // The arrow marks the line for screen readers and tests as well as the eye.
-                let arrow = if current { '>' } else { ' ' };
-                let mut rich = RichText::new(format!("{:>2}{arrow} {text}", i + 1)).monospace();
-                if current {
-                    rich = rich
-                        .background_color(Color32::from_rgb(70, 60, 20))
-                        .color(Color32::WHITE);
-                }
-                let response = ui.label(rich);
-                if current {
-                    response.scroll_to_me(None);
-                }
-            }
+            egui::ScrollArea::horizontal()
+                .id_salt(("code", index))
+                .show(ui, |ui| code_lines(code, line, ui));
         });
     if !code.note.is_empty() {
         ui.label(RichText::new(code.note).small().weak());
@@ -231,6 +218,27 @@ fn pseudocode_view(
 
 /// A counter's name, how to read it from [`Counters`], its total and brute force's.
 type CounterRow = (&'static str, fn(&Counters) -> u64, u64, u64);
+
+/// The listing, one unwrapped line per label, the current one marked and scrolled to.
+fn code_lines(code: &crate::pseudocode::Pseudocode, line: Option<usize>, ui: &mut egui::Ui) {
+    ui.spacing_mut().item_spacing.y = 0.0;
+    for (i, text) in code.lines.iter().enumerate() {
+        let current = line == Some(i);
+        // The arrow marks the line for screen readers and tests as well as the eye.
+        let arrow = if current { '>' } else { ' ' };
+        let mut rich = RichText::new(format!("{:>2}{arrow} {text}", i + 1)).monospace();
+        if current {
+            rich = rich
+                .background_color(Color32::from_rgb(70, 60, 20))
+                .color(Color32::WHITE);
+        }
+        let response =
+            ui.add(egui::Label::new(rich.size(12.0)).wrap_mode(egui::TextWrapMode::Extend));
+        if current {
+            response.scroll_to_me(None);
+        }
+    }
+}
 
 fn counters_table(
     rec: &crate::recording::Recording,
