@@ -12,6 +12,7 @@
 
 pub mod app;
 pub mod canvas;
+pub mod export;
 pub mod frame_clock;
 pub mod paint;
 pub mod panels;
