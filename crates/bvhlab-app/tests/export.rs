@@ -1,12 +1,15 @@
 //! The canvas exports checked from the outside: SVG parsed back with an XML parser and every
-//! element's coordinates and colours compared with the shapes it came from.
+//! element's coordinates and colours compared with the shapes it came from; PNG decoded with
+//! the `png` crate; crops compared pixel by pixel with the screenshot; files read back.
 
 use std::sync::Arc;
 
-use bvhlab_app::export::svg_document;
+use bvhlab_app::export::{crop, png_bytes, save_file_in, svg_document};
 use egui::epaint::{CircleShape, EllipseShape, Mesh, PathShape, RectShape, TextShape, Vertex};
 use egui::text::{LayoutJob, TextFormat};
-use egui::{Color32, CornerRadius, FontId, Pos2, Rect, Shape, Stroke, StrokeKind, pos2, vec2};
+use egui::{
+    Color32, ColorImage, CornerRadius, FontId, Pos2, Rect, Shape, Stroke, StrokeKind, pos2, vec2,
+};
 use roxmltree::{Document, Node};
 
 /// The exported area used throughout: not at the origin, so a viewBox that ignored it shows.
@@ -616,4 +619,176 @@ fn an_empty_area_gives_an_empty_document() {
         );
         assert_eq!(doc.root_element().attribute("viewBox"), Some("0 0 0 0"));
     }
+}
+
+/// A screenshot whose pixel at (x, y) says where it is: red = x, green = y.
+fn coordinates_image(width: usize, height: usize) -> ColorImage {
+    let pixels = (0..height)
+        .flat_map(|y| (0..width).map(move |x| Color32::from_rgb(x as u8, y as u8, 99)))
+        .collect();
+    ColorImage::new([width, height], pixels)
+}
+
+#[test]
+fn png_round_trips_through_the_png_decoder() {
+    let (width, height) = (7, 5);
+    // Straight colours with varied alpha; opaque ones must come back exactly.
+    let straight = |x: usize, y: usize| -> [u8; 4] {
+        let alpha = [255, 255, 128, 200, 17][y];
+        [(x * 36) as u8, (y * 60) as u8, 200, alpha]
+    };
+    let pixels = (0..height)
+        .flat_map(|y| {
+            (0..width).map(move |x| {
+                let [r, g, b, a] = straight(x, y);
+                Color32::from_rgba_unmultiplied(r, g, b, a)
+            })
+        })
+        .collect();
+    let image = ColorImage::new([width, height], pixels);
+    let bytes = png_bytes(&image).expect("encodes");
+
+    let decoder = png::Decoder::new(std::io::Cursor::new(&bytes[..]));
+    let mut reader = decoder.read_info().expect("a PNG header");
+    let mut buffer = vec![0; reader.output_buffer_size().expect("a size")];
+    let info = reader.next_frame(&mut buffer).expect("a frame");
+    assert_eq!((info.width, info.height), (width as u32, height as u32));
+    assert_eq!(info.color_type, png::ColorType::Rgba);
+    assert_eq!(info.bit_depth, png::BitDepth::Eight);
+    for y in 0..height {
+        for x in 0..width {
+            let i = 4 * (y * width + x);
+            let got = &buffer[i..i + 4];
+            let want = straight(x, y);
+            let tolerance = if want[3] == 255 {
+                0
+            } else {
+                (255 / (2 * u16::from(want[3]))) as i16 + 1
+            };
+            for (g, w) in got.iter().zip(want) {
+                assert!(
+                    (i16::from(*g) - i16::from(w)).abs() <= tolerance,
+                    "({x}, {y}): {got:?} vs {want:?}"
+                );
+            }
+            assert_eq!(got[3], want[3]);
+        }
+    }
+}
+
+#[test]
+fn png_refuses_empty_and_inconsistent_images() {
+    assert!(png_bytes(&ColorImage::new([0, 0], Vec::new())).is_err());
+    let mut image = coordinates_image(3, 3);
+    image.pixels.pop();
+    assert!(png_bytes(&image).is_err());
+}
+
+/// The crop computed the slow way: every pixel whose centre lies in the rect scaled to
+/// pixels.
+fn brute_crop(image: &ColorImage, rect: Rect, ppp: f32) -> (Vec<Color32>, [usize; 2]) {
+    let px = Rect::from_min_max(rect.min * ppp, rect.max * ppp);
+    let mut pixels = Vec::new();
+    let (mut xs, mut ys) = (Vec::new(), Vec::new());
+    for y in 0..image.size[1] {
+        for x in 0..image.size[0] {
+            let centre = pos2(x as f32 + 0.5, y as f32 + 0.5);
+            if px.contains(centre) {
+                pixels.push(image.pixels[y * image.size[0] + x]);
+                xs.push(x);
+                ys.push(y);
+            }
+        }
+    }
+    xs.sort_unstable();
+    xs.dedup();
+    ys.sort_unstable();
+    ys.dedup();
+    (pixels, [xs.len(), ys.len()])
+}
+
+#[test]
+fn crops_take_the_pixels_under_the_rect_at_any_scale() {
+    let screenshot = coordinates_image(40, 30);
+    let cases = [
+        (Rect::from_min_max(pos2(2.0, 3.0), pos2(6.0, 8.0)), 1.0),
+        (Rect::from_min_max(pos2(1.0, 1.5), pos2(3.0, 4.0)), 2.0),
+        (Rect::from_min_max(pos2(3.5, 2.0), pos2(12.0, 9.5)), 2.0),
+        // Reaching past the window: the part inside it.
+        (Rect::from_min_max(pos2(-5.0, 20.0), pos2(10.0, 50.0)), 1.0),
+        (Rect::from_min_max(pos2(15.0, 10.0), pos2(30.0, 40.0)), 2.0),
+    ];
+    for (rect, ppp) in cases {
+        let cut = crop(&screenshot, rect, ppp);
+        let (pixels, size) = brute_crop(&screenshot, rect, ppp);
+        assert_eq!(cut.size, size, "{rect:?} at {ppp}");
+        assert_eq!(cut.pixels, pixels, "{rect:?} at {ppp}");
+    }
+    // At 2 pixels per point, the point (1, 1.5) is the pixel (2, 3).
+    let cut = crop(
+        &screenshot,
+        Rect::from_min_max(pos2(1.0, 1.5), pos2(3.0, 4.0)),
+        2.0,
+    );
+    assert_eq!(cut.size, [4, 5]);
+    assert_eq!(cut.pixels[0], Color32::from_rgb(2, 3, 99));
+    // Everything is the whole image; nothing, outside or NaN give empty images.
+    assert_eq!(
+        crop(&screenshot, Rect::EVERYTHING, 1.0).pixels,
+        screenshot.pixels
+    );
+    for rect in [
+        Rect::NOTHING,
+        Rect::NAN,
+        Rect::from_min_max(pos2(50.0, 0.0), pos2(60.0, 5.0)),
+    ] {
+        let cut = crop(&screenshot, rect, 1.0);
+        assert_eq!(cut.size, [0, 0], "{rect:?}");
+        assert!(cut.pixels.is_empty());
+    }
+}
+
+/// A fresh directory under the system's temporary one, removed when dropped.
+struct TempDir(std::path::PathBuf);
+
+impl TempDir {
+    fn new(tag: &str) -> Self {
+        let nanos = std::time::SystemTime::now()
+            .duration_since(std::time::UNIX_EPOCH)
+            .map_or(0, |d| d.as_nanos());
+        let dir = std::env::temp_dir().join(format!(
+            "bvhlab-export-{tag}-{}-{nanos}",
+            std::process::id()
+        ));
+        std::fs::create_dir_all(&dir).expect("a temporary directory");
+        Self(dir)
+    }
+}
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+#[test]
+fn saved_files_read_back_and_never_overwrite() {
+    let dir = TempDir::new("save");
+    let first: Vec<u8> = (0..=255).collect();
+    let second = b"<svg/>".to_vec();
+    let a = save_file_in(&dir.0, "canvas.svg", &first).expect("saved");
+    let b = save_file_in(&dir.0, "canvas.svg", &second).expect("saved again");
+    assert_eq!(a, dir.0.join("canvas.svg"));
+    assert_eq!(b, dir.0.join("canvas (1).svg"));
+    assert_eq!(std::fs::read(&a).expect("readable"), first);
+    assert_eq!(std::fs::read(&b).expect("readable"), second);
+
+    // Directories in the name are dropped: the file lands in `dir`.
+    let c = save_file_in(&dir.0, "../../escape.png", &second).expect("saved");
+    assert_eq!(c, dir.0.join("escape.png"));
+    for bad in ["", "..", "some/dir/"] {
+        assert!(save_file_in(&dir.0, bad, &second).is_err(), "{bad:?}");
+    }
+    let entries = std::fs::read_dir(&dir.0).expect("listable").count();
+    assert_eq!(entries, 3);
 }
