@@ -13,6 +13,7 @@
 pub mod app;
 pub mod build_view;
 pub mod canvas;
+pub mod export;
 pub mod frame_clock;
 pub mod lane;
 pub mod paint;
