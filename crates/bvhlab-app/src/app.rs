@@ -103,6 +103,12 @@ pub struct LabApp {
     pub linked: Option<(usize, NodeId)>,
     /// Hovering the canvas finds the node under the pointer (and the tree diagram shows it).
     pub link_hover: bool,
+    /// The whole drawing area (both halves when comparing), in points.
+    pub canvas_rect: egui::Rect,
+    /// The tree diagram's area, when one is shown.
+    pub tree_rect: Option<egui::Rect>,
+    /// A PNG export waiting for its screenshot.
+    pub pending_png: Option<crate::export_ui::PendingPng>,
     /// The query ray.
     pub ray: Option<RayHandles>,
     /// The query point.
@@ -149,6 +155,9 @@ impl Default for LabApp {
             hovered: None,
             linked: None,
             link_hover: true,
+            canvas_rect: egui::Rect::NOTHING,
+            tree_rect: None,
+            pending_png: None,
             ray: None,
             point: None,
             k: 1,
@@ -297,6 +306,7 @@ impl LabApp {
         self.clock.tick(Instant::now());
         self.refresh();
         self.playback_keys(ui);
+        crate::export_ui::finish_png(self, ui.ctx());
         if self.playback.advance(dt, self.steps()) {
             self.refresh();
         }

@@ -14,6 +14,7 @@ pub mod app;
 pub mod build_view;
 pub mod canvas;
 pub mod export;
+pub mod export_ui;
 pub mod frame_clock;
 pub mod lane;
 pub mod paint;

@@ -17,6 +17,7 @@ use crate::tool::Tool;
 pub fn canvas(app: &mut LabApp, ui: &mut egui::Ui) {
     let (response, painter) = ui.allocate_painter(ui.available_size(), Sense::click_and_drag());
     let halves = halves(response.rect, app.compare.is_some());
+    app.canvas_rect = response.rect;
     app.view.rect = halves[0];
     if app.fit_pending {
         if let Some((lo, hi)) = app.scene.bounds() {
