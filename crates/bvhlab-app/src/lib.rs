@@ -21,6 +21,7 @@ pub mod report;
 pub mod scene;
 pub mod structures;
 pub mod tool;
+pub mod tree_view;
 pub mod view;
 pub mod volumes;
 #[cfg(target_arch = "wasm32")]
