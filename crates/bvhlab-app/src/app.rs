@@ -107,6 +107,10 @@ pub struct LabApp {
     pub canvas_rect: egui::Rect,
     /// The tree diagram's area, when one is shown.
     pub tree_rect: Option<egui::Rect>,
+    /// The tree diagrams, one per lane.
+    pub trees: crate::tree_panel::Trees,
+    /// Whether the tree diagrams are shown.
+    pub show_tree: bool,
     /// A PNG export waiting for its screenshot.
     pub pending_png: Option<crate::export_ui::PendingPng>,
     /// The query ray.
@@ -158,6 +162,8 @@ impl Default for LabApp {
             canvas_rect: egui::Rect::NOTHING,
             tree_rect: None,
             pending_png: None,
+            trees: Default::default(),
+            show_tree: true,
             ray: None,
             point: None,
             k: 1,
@@ -293,6 +299,14 @@ impl LabApp {
             .max(self.compare.as_ref().map_or(0, Lane::steps))
     }
 
+    /// Lane `index`: 1 is the comparison when on; anything else the main lane.
+    pub fn lane_at(&self, index: usize) -> &Lane {
+        match (index, &self.compare) {
+            (1, Some(other)) => other,
+            _ => &self.lane,
+        }
+    }
+
     /// The lanes shown: the main one, and the comparison when on.
     pub fn lanes(&self) -> impl Iterator<Item = &Lane> {
         std::iter::once(&self.lane).chain(self.compare.as_ref())
@@ -326,6 +340,14 @@ impl LabApp {
             .show(ui, |ui| {
                 egui::ScrollArea::vertical().show(ui, |ui| crate::stepper::stepper(self, ui));
             });
+        if self.show_tree {
+            egui::Panel::bottom("tree")
+                .resizable(true)
+                .default_size(230.0)
+                .show(ui, |ui| crate::tree_panel::tree_panel(self, ui));
+        } else {
+            self.tree_rect = None;
+        }
         egui::CentralPanel::default()
             .frame(egui::Frame::NONE.fill(egui::Color32::from_rgb(24, 26, 32)))
             .show(ui, |ui| crate::canvas::canvas(self, ui));

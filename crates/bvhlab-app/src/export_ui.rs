@@ -26,7 +26,11 @@ pub const BACKGROUND: egui::Color32 = egui::Color32::from_rgb(24, 26, 32);
 pub fn export_buttons(app: &mut LabApp, ui: &mut egui::Ui) {
     ui.horizontal_wrapped(|ui| {
         ui.label("Canvas:");
-        if ui.button("SVG").on_hover_text("the canvas as a vector drawing").clicked() {
+        if ui
+            .button("SVG")
+            .on_hover_text("the canvas as a vector drawing")
+            .clicked()
+        {
             let shapes = crate::canvas::picture(app, ui.painter());
             let rect = app.canvas_rect;
             let svg = crate::export::svg_document(&shapes, rect, BACKGROUND);
@@ -36,13 +40,21 @@ pub fn export_buttons(app: &mut LabApp, ui: &mut egui::Ui) {
                 svg.as_bytes(),
             )));
         }
-        if ui.button("PNG").on_hover_text("the canvas as a picture").clicked() {
+        if ui
+            .button("PNG")
+            .on_hover_text("the canvas as a picture")
+            .clicked()
+        {
             request_png(app, ui.ctx(), app.canvas_rect, "bvh-lab-canvas.png");
         }
         if let Some(rect) = app.tree_rect {
             ui.label("Tree:");
-            if ui.button("SVG ").on_hover_text("the tree diagram as a vector drawing").clicked() {
-                let shapes = crate::stepper::tree_picture(app, ui.ctx(), rect);
+            if ui
+                .button("SVG ")
+                .on_hover_text("the tree diagram as a vector drawing")
+                .clicked()
+            {
+                let shapes = crate::tree_panel::tree_picture(app, ui.ctx(), rect);
                 let svg = crate::export::svg_document(&shapes, rect, BACKGROUND);
                 app.message = Some(saved(crate::export::save_file(
                     "bvh-lab-tree.svg",
@@ -50,7 +62,11 @@ pub fn export_buttons(app: &mut LabApp, ui: &mut egui::Ui) {
                     svg.as_bytes(),
                 )));
             }
-            if ui.button("PNG ").on_hover_text("the tree diagram as a picture").clicked() {
+            if ui
+                .button("PNG ")
+                .on_hover_text("the tree diagram as a picture")
+                .clicked()
+            {
                 request_png(app, ui.ctx(), rect, "bvh-lab-tree.png");
             }
         }

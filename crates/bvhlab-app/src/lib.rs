@@ -29,6 +29,7 @@ pub mod scene;
 pub mod stepper;
 pub mod structures;
 pub mod tool;
+pub mod tree_panel;
 pub mod tree_view;
 pub mod view;
 pub mod volumes;

@@ -90,8 +90,15 @@ pub fn task_picker(app: &mut LabApp, ui: &mut egui::Ui) {
 
 fn compare_picker(app: &mut LabApp, ui: &mut egui::Ui) {
     ui.horizontal(|ui| {
+        ui.checkbox(&mut app.show_tree, "tree diagram");
+        ui.checkbox(&mut app.link_hover, "hover finds nodes")
+            .on_hover_text("hovering the canvas highlights the node under the pointer, and its place in the tree");
+    });
+    ui.horizontal(|ui| {
         let mut on = app.compare.is_some();
         if ui.checkbox(&mut on, "compare with").changed() {
+            // The canvas halves (or doubles): frame the scene in the new width.
+            app.fit_pending = true;
             app.compare = on.then(|| {
                 let mut settings = app.lane.settings;
                 settings.kind = if settings.kind == StructureKind::SphereTree {
@@ -103,7 +110,7 @@ fn compare_picker(app: &mut LabApp, ui: &mut egui::Ui) {
             });
         }
         if let Some(other) = &mut app.compare {
-            egui::ComboBox::from_id_salt("compare kind")
+            egui::ComboBox::from_label("second structure")
                 .selected_text(other.settings.kind.label())
                 .show_ui(ui, |ui| {
                     for kind in StructureKind::ALL {
@@ -396,9 +403,4 @@ fn best_view(task: Task, snap: &Snapshot, ui: &mut egui::Ui) {
         })
         .collect();
     ui.colored_label(colors::ANSWER, format!("{what}: {}", items.join(", ")));
-}
-
-/// The tree diagram's shapes for export (until the diagram lands: none).
-pub fn tree_picture(_app: &mut LabApp, _ctx: &egui::Context, _rect: egui::Rect) -> Vec<egui::Shape> {
-    Vec::new()
 }

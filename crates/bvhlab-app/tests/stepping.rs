@@ -206,3 +206,86 @@ fn the_slides_version_and_the_full_one_are_both_counted() {
         &format!("the slides' version: {} nodes", slides.nodes_visited)
     ));
 }
+
+#[test]
+fn the_tree_and_the_canvas_find_each_others_nodes() {
+    use bvhlab::BoundingVolume;
+    let mut h = lab();
+    choose(&mut h, "Structure", StructureKind::AabbTree.label());
+    let outline = h
+        .state()
+        .lane
+        .built
+        .as_ref()
+        .expect("built")
+        .outline
+        .clone();
+    // Tree -> canvas: hovering a leaf's dot in the diagram makes it the canvas's hovered node.
+    let leaf = outline
+        .iter()
+        .rev()
+        .find(|n| n.is_leaf())
+        .expect("a leaf")
+        .id;
+    let at = h.state().trees[0].node_screen_pos(leaf);
+    let at = at.expect("the leaf is drawn in the diagram");
+    h.hover_at(at);
+    settle(&mut h);
+    assert_eq!(h.state().hovered, Some((0, leaf)));
+    // Canvas -> tree: hovering a point on the canvas links the deepest node whose box holds
+    // it (found here by scanning every node).
+    let node = &outline[leaf.index()];
+    let target = node.shape.aabb().center();
+    let expected = outline
+        .iter()
+        .filter(|n| n.shape.aabb().contains(target))
+        .max_by(|a, b| {
+            let area = |n: &bvhlab::NodeOutline<bvhlab::glam::Vec2>| {
+                let d = n.shape.aabb().max - n.shape.aabb().min;
+                d.x * d.y
+            };
+            a.depth.cmp(&b.depth).then(area(b).total_cmp(&area(a)))
+        })
+        .map(|n| n.id);
+    h.hover_at(screen(&h, target));
+    settle(&mut h);
+    assert_eq!(h.state().hovered.map(|(_, n)| n), expected);
+    assert_eq!(
+        h.state().linked.map(|(_, n)| n),
+        expected,
+        "the tree shows it"
+    );
+}
+
+#[test]
+fn two_structures_step_together() {
+    let mut h = lab();
+    choose(&mut h, "Structure", StructureKind::SphereTree.label());
+    click(&mut h, "compare with");
+    assert!(h.state().compare.is_some());
+    drag_test_ray(&mut h);
+    let kinds: Vec<StructureKind> = h.state().lanes().map(|l| l.settings.kind).collect();
+    assert_eq!(
+        kinds,
+        vec![StructureKind::SphereTree, StructureKind::AabbTree]
+    );
+    click(&mut h, "|<");
+    for step in 1..=6 {
+        click(&mut h, ">");
+        for lane in h.state().lanes() {
+            let rec = lane.recorded().expect("both lanes recorded the same ray");
+            let snap = lane.snapshot.as_ref().expect("a snapshot");
+            assert_eq!(snap.step, step.min(rec.events.len()));
+            assert_eq!(rec.question.ray, h.state().ray.and_then(|r| r.ray().ok()));
+        }
+    }
+    click(&mut h, ">|");
+    for lane in h.state().lanes() {
+        let rec = lane.recorded().expect("recorded");
+        assert!(rec.agrees(), "{:?}", lane.settings.kind);
+        assert_eq!(
+            lane.snapshot.as_ref().map(|s| s.step),
+            Some(rec.events.len())
+        );
+    }
+}

@@ -145,10 +145,7 @@ pub fn picture(
 
 /// Lane `index` (the main one for anything but 1).
 pub(super) fn lane(app: &LabApp, index: usize) -> &Lane {
-    match (index, &app.compare) {
-        (1, Some(other)) => other,
-        _ => &app.lane,
-    }
+    app.lane_at(index)
 }
 
 fn lane_mut(app: &mut LabApp, index: usize) -> Option<&mut Lane> {
