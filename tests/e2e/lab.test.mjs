@@ -33,7 +33,7 @@ const executablePath = process.env.CHROMIUM ?? '/usr/bin/chromium';
 
 const READY_TIMEOUT_MS = 60_000;
 const QUERY_TIMEOUT_MS = 30_000;
-const VIEWPORT = { width: 1280, height: 800 };
+const VIEWPORT = { width: 1600, height: 900 };
 
 // Flags from shared/SETUP.md. The background-networking ones keep Chromium from calling home
 // (the network is closed); Playwright refuses --user-data-dir, hence launchPersistentContext.
@@ -196,7 +196,7 @@ async function screenshot(page, name) {
 }
 
 async function runOne({ renderer, label, search = '', primitives, args }) {
-  for (const stale of ['start', 'ray', 'failure']) {
+  for (const stale of ['start', 'ray', 'step', 'failure']) {
     rmSync(join(outDir, `${label}-${stale}.png`), { force: true });
   }
   const profile = mkdtempSync(join(tmpdir(), 'bvhlab-e2e-'));
@@ -334,6 +334,30 @@ async function runOne({ renderer, label, search = '', primitives, args }) {
     );
     summary.screenshots = [show(start.path), show(ray.path)];
 
+    // 6. Step through the traversal with the keyboard: Home, then "." five times. The report's
+    // playback section follows step by step; its counters never go down, and at the end
+    // (End) they are the query's totals.
+    await page.keyboard.press('Home');
+    await waitForReport(page, (r) => r.playback?.[0]?.step === 0, QUERY_TIMEOUT_MS, 'playback at step 0');
+    let previous = [0, 0, 0];
+    for (let step = 1; step <= 5; step++) {
+      await page.keyboard.press('Period');
+      const { report: r } = await waitForReport(page, (r) => r.playback?.[0]?.step === step, QUERY_TIMEOUT_MS, `playback at step ${step}`);
+      const p = r.playback[0];
+      check(p.line != null && p.line >= 1, `step ${step}: no pseudocode line is highlighted (${JSON.stringify(p)})`);
+      check(p.so_far.every((v, i) => v >= previous[i] && v <= p.total[i]), `step ${step}: counters ${JSON.stringify(p.so_far)} after ${JSON.stringify(previous)} (totals ${JSON.stringify(p.total)})`);
+      previous = p.so_far;
+    }
+    summary.stepped = previous;
+    const stepped = await screenshot(page, `${label}-step.png`);
+    summary.screenshots.push(show(stepped.path));
+    await page.keyboard.press('End');
+    const { report: ended } = await waitForReport(page, (r) => r.playback?.[0] && r.playback[0].step === r.playback[0].steps, QUERY_TIMEOUT_MS, 'playback at the end');
+    const end = ended.playback[0];
+    check(JSON.stringify(end.so_far) === JSON.stringify(end.total) || end.structure === 'uniform grid',
+      `at the end the counters ${JSON.stringify(end.so_far)} are not the totals ${JSON.stringify(end.total)}`);
+    check(end.total[0] === q.nodes_visited && end.total[2] === q.primitive_tests, `playback totals ${JSON.stringify(end.total)} differ from the query's`);
+
     check(problems.length === 0, `the page reported problems:\n  ${problems.join('\n  ')}`);
     return summary;
   } catch (error) {
@@ -371,6 +395,7 @@ function describe(s) {
       ' (software rendering; not asserted)',
   );
   lines.push(`  ray drawn along ${s.changedAlongRay.changed} of ${s.changedAlongRay.samples} samples of the drag line`);
+  lines.push(`  stepped 5 steps with the keyboard: counters so far ${JSON.stringify(s.stepped)} (nodes, bound tests, primitive tests)`);
   lines.push(`  screenshots: ${s.screenshots.join(', ')}`);
   return lines.join('\n');
 }

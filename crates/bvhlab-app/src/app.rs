@@ -267,13 +267,12 @@ impl LabApp {
         let p = &mut self.playback;
         let shown = if p.at_end { len } else { p.step };
         ui.input(|i| {
-            if i.key_pressed(egui::Key::Period) {
+            // Several presses can arrive in one frame (fast typing, a slow frame).
+            let forward = i.num_presses(egui::Key::Period);
+            let back = i.num_presses(egui::Key::Comma);
+            if forward + back > 0 {
                 p.playing = false;
-                p.go(shown + 1, len);
-            }
-            if i.key_pressed(egui::Key::Comma) {
-                p.playing = false;
-                p.go(shown.saturating_sub(1), len);
+                p.go((shown + forward).saturating_sub(back), len);
             }
             if i.key_pressed(egui::Key::Home) {
                 p.playing = false;
