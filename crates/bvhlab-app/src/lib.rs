@@ -8,6 +8,11 @@
 //! - [`app`]: the state and the layout; [`panels`]: the controls; [`canvas`]: input and drawing.
 //! - [`scene`], [`presets`]: what is drawn; [`structures`]: one dispatch over the core's
 //!   structures; [`query`]: queries and their events; [`volumes`]: lecture §2 as data.
+//! - [`recording`], [`playback`]: a query or build recorded as events and folded at any step;
+//!   [`pseudocode`]: each algorithm's listing and the line of each event; [`stepper`],
+//!   [`build_view`]: the "Step through" panel; [`tree_view`], [`tree_panel`]: the tree diagrams;
+//!   [`lane`]: one structure and what is derived from it (two when comparing).
+//! - [`export`], [`export_ui`]: SVG and PNG for slides.
 //! - [`report`]: the lab's state for the page (the browser test and screen readers read it).
 
 pub mod app;
