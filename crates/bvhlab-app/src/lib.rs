@@ -9,6 +9,7 @@
 //! - [`scene`], [`presets`]: what is drawn; [`structures`]: one dispatch over the core's
 //!   structures; [`query`]: queries and their events; [`volumes`]: lecture §2 as data.
 //! - [`report`]: the lab's state for the page (the browser test and screen readers read it).
+//! - [`persist`]: scene files, share links and the state kept across reloads.
 
 pub mod app;
 pub mod build_view;
@@ -17,6 +18,7 @@ pub mod frame_clock;
 pub mod lane;
 pub mod paint;
 pub mod panels;
+pub mod persist;
 pub mod playback;
 pub mod presets;
 pub mod pseudocode;
