@@ -4,6 +4,8 @@
 //! garbage, deflate bombs, a few hundred seeded mutations) give a message and leave the lab
 //! as it was; the start-up order and the autosave are checked on plain data.
 
+use std::sync::Arc;
+
 use base64::Engine as _;
 use base64::engine::general_purpose::URL_SAFE_NO_PAD;
 use bvhlab::glam::Vec2;
@@ -801,4 +803,65 @@ fn autosave_writes_changes_at_most_every_half_second() {
     fresh.write_failed();
     app.k = 4;
     assert!(matches!(fresh.poll(&app, 1.0), AutosaveStep::Save(_)));
+}
+
+#[test]
+fn a_file_dropped_on_the_window_opens_and_a_bad_one_is_refused() {
+    use egui_kittest::Harness;
+    use egui_kittest::kittest::Queryable as _;
+
+    #[derive(Debug)]
+    struct Dropped(std::path::PathBuf);
+    impl egui::DroppedFile for Dropped {
+        fn path(&self) -> &std::path::Path {
+            &self.0
+        }
+        fn bytes(&self) -> Result<Vec<u8>, String> {
+            std::fs::read(&self.0).map_err(|e| e.to_string())
+        }
+    }
+
+    let dir = std::env::temp_dir().join(format!("bvhlab-persist-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let good = dir.join("scene.json");
+    let source = dressed(Preset::KdHandful, 3, false);
+    std::fs::write(&good, to_file(&source)).expect("write");
+    let bad = dir.join("bad.json");
+    std::fs::write(&bad, b"{\"version\": 1, \"k\": \"many\"}").expect("write");
+
+    let mut h = Harness::builder()
+        .with_size(egui::vec2(1800.0, 1800.0))
+        .build_ui_state(|ui, app: &mut LabApp| app.show(ui), LabApp::default());
+    h.run();
+    h.input_mut()
+        .dropped_files
+        .push(Arc::new(Dropped(good.clone())));
+    h.run();
+    let app = h.state();
+    assert_eq!(app.scene.shapes(), source.scene.shapes());
+    assert_eq!(app.lane.settings, source.lane.settings);
+    assert!(
+        app.message
+            .as_deref()
+            .is_some_and(|m| m.starts_with("Opened")),
+        "{:?}",
+        app.message
+    );
+
+    let revision = h.state().scene.revision();
+    h.input_mut().dropped_files.push(Arc::new(Dropped(bad)));
+    h.run();
+    let message = h.state().message.clone().unwrap_or_default();
+    assert!(
+        message.contains("invalid type") && message.ends_with("kept."),
+        "{message}"
+    );
+    assert_eq!(h.state().scene.revision(), revision);
+
+    // The share link appears in a field natively.
+    h.get_by_label("Copy share link").click();
+    h.run();
+    let shown = persist::share_link_text(&h.ctx).expect("a link is shown");
+    assert!(from_fragment(&shown).is_ok());
+    std::fs::remove_dir_all(&dir).ok();
 }

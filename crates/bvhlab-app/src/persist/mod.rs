@@ -22,6 +22,7 @@
 //! garbage, deflate bombs, deep nesting) gives an error, never a panic or an unbounded
 //! allocation.
 
+mod actions;
 mod file;
 mod link;
 mod names;
@@ -29,6 +30,7 @@ mod restore;
 mod state;
 mod storage;
 
+pub use actions::{copy_share_link, export_scene, import_scene, poll_imports, share_link_text};
 pub use file::{from_file, to_file};
 pub use link::{LINK_PREFIX, from_fragment, link_fragment};
 pub use names::{
