@@ -35,6 +35,9 @@ pub enum News {
     },
     /// The clipboard took the share link (or refused it).
     Copied(Result<(), String>),
+    /// A share link was opened in the page already showing the lab (only the address's
+    /// fragment changed, so the page did not reload): its fragment.
+    Link(String),
 }
 
 /// Starts the lab on the canvas `#lab`.
@@ -51,15 +54,17 @@ pub fn start() {
             log::error!("the page has no <canvas id=\"lab\">");
             return;
         };
-        let (app, saved) = start_state();
+        let (app, saved, failed) = start_state();
         let result = eframe::WebRunner::new()
             .start(
                 canvas,
                 eframe::WebOptions::default(),
-                Box::new(move |_cc| {
+                Box::new(move |cc| {
+                    listen_for_links(cc.egui_ctx.clone());
                     Ok(Box::new(WebLab {
                         app,
                         autosave: Autosave::new(saved),
+                        hold: failed,
                         storage_failed: false,
                     }))
                 }),
@@ -75,13 +80,13 @@ pub fn start() {
 }
 
 /// The lab the page opens with ([`crate::persist::startup`]: a `#s=` link, then `?preset=`,
-/// then the saved state, then the default), and the saved state's text.
+/// then the saved state, then the default), the saved state's text, and whether something
+/// asked for failed to open.
 ///
-/// A share link's fragment is removed from the address once read: the state then lives on in
-/// `localStorage`, and a reload shows the student's latest changes instead of the link again.
-fn start_state() -> (LabApp, Option<String>) {
+/// A share link's fragment is removed from the address once read ([`forget_link`]).
+fn start_state() -> (LabApp, Option<String>, bool) {
     let Some(window) = web_sys::window() else {
-        return (LabApp::default(), None);
+        return (LabApp::default(), None, false);
     };
     let location = window.location();
     let hash = location.hash().unwrap_or_default();
@@ -102,23 +107,63 @@ fn start_state() -> (LabApp, Option<String>) {
         log::warn!("{m}");
     }
     if hash.starts_with(crate::persist::LINK_PREFIX) {
-        let path = location.pathname().unwrap_or_default();
-        let address = format!("{path}{search}");
-        if let Ok(history) = window.history()
-            && history
-                .replace_state_with_url(&JsValue::NULL, "", Some(&address))
-                .is_err()
-        {
-            log::warn!("could not remove the share link from the address");
-        }
+        forget_link();
     }
-    (app, saved)
+    (app, saved, message.is_some())
+}
+
+/// Removes a share link's fragment from the address (keeping path and query), so that a
+/// reload shows the student's latest state, kept in `localStorage`, instead of the link again.
+pub fn forget_link() {
+    let Some(window) = web_sys::window() else {
+        return;
+    };
+    let location = window.location();
+    let address = format!(
+        "{}{}",
+        location.pathname().unwrap_or_default(),
+        location.search().unwrap_or_default()
+    );
+    if let Ok(history) = window.history()
+        && history
+            .replace_state_with_url(&JsValue::NULL, "", Some(&address))
+            .is_err()
+    {
+        log::warn!("could not remove the share link from the address");
+    }
+}
+
+/// Opens share links pasted into the address of the page already showing the lab: the
+/// browser then only changes the fragment (`hashchange`) and does not reload the page.
+fn listen_for_links(ctx: egui::Context) {
+    let Some(window) = web_sys::window() else {
+        return;
+    };
+    let on_change = Closure::<dyn FnMut()>::new(move || {
+        let hash = web_sys::window()
+            .and_then(|w| w.location().hash().ok())
+            .unwrap_or_default();
+        if hash.starts_with(crate::persist::LINK_PREFIX) {
+            deliver(&ctx, News::Link(hash));
+        }
+    });
+    if window
+        .add_event_listener_with_callback("hashchange", on_change.as_ref().unchecked_ref())
+        .is_err()
+    {
+        log::warn!("share links pasted into this page's address will need a reload");
+    }
+    // The listener lives as long as the page.
+    on_change.forget();
 }
 
 /// The lab, and the autosave that keeps its state in `localStorage`.
 struct WebLab {
     app: LabApp,
     autosave: Autosave,
+    /// The start-up failed and fell back to the default scene: keep the state saved earlier
+    /// until the student changes something (taken after the first frame, which fits the view).
+    hold: bool,
     /// Whether the last write failed (said once in the status line, not every frame).
     storage_failed: bool,
 }
@@ -127,6 +172,9 @@ impl eframe::App for WebLab {
     fn ui(&mut self, ui: &mut egui::Ui, frame: &mut eframe::Frame) {
         // The lab publishes its report itself.
         eframe::App::ui(&mut self.app, ui, frame);
+        if std::mem::take(&mut self.hold) {
+            self.autosave.keep_current(&self.app);
+        }
         let now = ui.input(|i| i.time);
         match self.autosave.poll(&self.app, now) {
             AutosaveStep::Idle => {}

@@ -797,6 +797,19 @@ fn autosave_writes_changes_at_most_every_half_second() {
     app.k = 3;
     assert_eq!(autosave.poll(&app, 6.2), AutosaveStep::Idle);
 
+    // After a failed start, the default scene does not overwrite the saved state until the
+    // student changes something.
+    let (mut fallen_back, message) = persist::startup(Some("#s=broken"), None, Some(&second));
+    assert!(message.is_some());
+    let mut held = Autosave::new(Some(second.clone()));
+    held.keep_current(&fallen_back);
+    assert_eq!(held.poll(&fallen_back, 0.0), AutosaveStep::Idle);
+    fallen_back.k = 2;
+    assert!(matches!(
+        held.poll(&fallen_back, 0.1),
+        AutosaveStep::Save(_)
+    ));
+
     // A lab started from the stored state does not write it again.
     let mut fresh = Autosave::new(Some(second.clone()));
     assert_eq!(fresh.poll(&app, 0.0), AutosaveStep::Idle);

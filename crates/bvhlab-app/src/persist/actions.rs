@@ -75,7 +75,8 @@ pub fn share_link_text(ctx: &egui::Context) -> Option<Arc<str>> {
 }
 
 /// Opens a scene file dropped on the window this frame, and (on the web) what the file
-/// dialog and the clipboard reported since the last frame. Runs every frame.
+/// dialog, the clipboard and the address bar (a share link pasted into the open page)
+/// reported since the last frame. Runs every frame.
 pub fn poll_imports(app: &mut LabApp, ctx: &egui::Context) {
     let dropped = ctx.input(|i| i.raw.dropped_files.clone());
     if let Some(file) = dropped.first() {
@@ -101,6 +102,13 @@ pub fn poll_imports(app: &mut LabApp, ctx: &egui::Context) {
             crate::web::News::Opened { name, bytes } => open_named(app, &name, bytes),
             crate::web::News::Copied(Ok(())) => {
                 app.message = Some("Share link copied to the clipboard.".to_owned());
+            }
+            crate::web::News::Link(fragment) => {
+                crate::web::forget_link();
+                app.message = Some(match super::open_fragment(app, &fragment) {
+                    Ok(()) => "Opened the share link.".to_owned(),
+                    Err(e) => e,
+                });
             }
             crate::web::News::Copied(Err(e)) => {
                 app.message = Some(format!(

@@ -123,7 +123,11 @@ impl Restored {
             ));
         }
         Ok(Self {
-            preset: state.preset.0,
+            // A scene that is a preset is that preset in the menu too.
+            preset: match &state.scene {
+                SceneState::Preset(p) => p.0,
+                SceneState::Shapes(_) => state.preset.0,
+            },
             scene,
             selection,
             settings: settings("the structure", &state.structure)?,

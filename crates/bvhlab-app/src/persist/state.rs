@@ -52,7 +52,8 @@ pub const FORMAT_VERSION: u32 = 1;
 pub struct SavedState {
     /// [`FORMAT_VERSION`].
     pub version: u32,
-    /// The preset chosen in the menu (what "Reload preset" reloads).
+    /// The preset chosen in the menu (what "Reload preset" reloads); a scene stored as a
+    /// preset's name sets it too.
     pub preset: PresetSlug,
     /// The shapes, or the preset they are (an unmodified preset is stored by name, so that
     /// even the 10,000-segment scene fits in a link).

@@ -103,6 +103,14 @@ impl Autosave {
         }
     }
 
+    /// Takes the lab's current state as kept, without writing it: after a start-up that
+    /// failed, the default scene it fell back to must not overwrite the state saved earlier
+    /// until the student changes something.
+    pub fn keep_current(&mut self, app: &LabApp) {
+        self.key = Some(ChangeKey::of(app));
+        self.dirty = false;
+    }
+
     /// Called once a frame with the time in seconds: whether to write the state now.
     pub fn poll(&mut self, app: &LabApp, now: f64) -> AutosaveStep {
         let key = ChangeKey::of(app);
