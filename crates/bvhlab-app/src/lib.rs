@@ -14,6 +14,7 @@
 //!   [`lane`]: one structure and what is derived from it (two when comparing).
 //! - [`export`], [`export_ui`]: SVG and PNG for slides.
 //! - [`report`]: the lab's state for the page (the browser test and screen readers read it).
+//! - [`persist`]: scene files, share links and the state kept across reloads.
 
 pub mod app;
 pub mod build_view;
@@ -24,6 +25,7 @@ pub mod frame_clock;
 pub mod lane;
 pub mod paint;
 pub mod panels;
+pub mod persist;
 pub mod playback;
 pub mod presets;
 pub mod pseudocode;

@@ -31,6 +31,7 @@ pub fn controls(app: &mut LabApp, ui: &mut egui::Ui) {
     CollapsingHeader::new("Queries")
         .default_open(true)
         .show(ui, |ui| query_section(app, ui));
+    persist_section(app, ui);
 }
 
 /// The line at the bottom: the last message, or what the tool does; and the frame rate.
@@ -608,4 +609,46 @@ fn point_answer(app: &LabApp, ui: &mut egui::Ui) {
         }
         counters(ui, "point", o.cost, o.brute_cost, o.agrees());
     }
+}
+
+/// Save and share: export and import scene files, and a link that opens this state. Also
+/// opens the files dropped on the window (this panel is drawn every frame, open or not).
+fn persist_section(app: &mut LabApp, ui: &mut egui::Ui) {
+    use crate::persist;
+    persist::poll_imports(app, ui.ctx());
+    CollapsingHeader::new("Save and share")
+        .default_open(true)
+        .show(ui, |ui| {
+            ui.horizontal_wrapped(|ui| {
+                if ui
+                    .button("Export scene")
+                    .on_hover_text("Save the scene, structures, queries and view as a .json file.")
+                    .clicked()
+                {
+                    persist::export_scene(app);
+                }
+                if ui
+                    .button("Import scene…")
+                    .on_hover_text("Open a .json scene file (or drop it on the window).")
+                    .clicked()
+                {
+                    persist::import_scene(app, ui.ctx());
+                }
+                if ui
+                    .button("Copy share link")
+                    .on_hover_text("A link that opens the lab in this state.")
+                    .clicked()
+                {
+                    persist::copy_share_link(app, ui.ctx());
+                }
+            });
+            if let Some(link) = persist::share_link_text(ui.ctx()) {
+                ui.add(
+                    egui::TextEdit::singleline(&mut &*link)
+                        .desired_width(f32::INFINITY)
+                        .id_salt("share link"),
+                );
+            }
+            ui.label("Drop a .json scene file on the window to open it.");
+        });
 }

@@ -1,17 +1,43 @@
-//! The web page side: starting the lab on the `#lab` canvas, and publishing its
+//! The web page side: starting the lab on the `#lab` canvas with the state the address or the
+//! browser asks for, keeping that state in `localStorage` as it changes, publishing the lab's
 //! [`Report`] into `#lab-status` (text for screen readers, JSON in `data-report` for the page,
-//! the browser test and course pages that embed the lab).
+//! the browser test and course pages that embed the lab), and the browser's side of saving
+//! and sharing: downloads, the file dialog, dropped files and the clipboard.
+//!
+//! The browser answers file reads and clipboard writes later (promises); the answers wait in
+//! an inbox ([`take_news`]) that the lab reads on its next frame.
 
 use std::cell::RefCell;
 
 use wasm_bindgen::JsCast;
+use wasm_bindgen::prelude::*;
+use wasm_bindgen_futures::JsFuture;
 
-use crate::presets::Preset;
+use crate::LabApp;
+use crate::persist::{Autosave, AutosaveStep, STORAGE_KEY};
 use crate::report::Report;
 
 thread_local! {
     /// The JSON last written, so the DOM is touched only when something changed.
     static LAST: RefCell<String> = const { RefCell::new(String::new()) };
+    /// What the browser answered since the last frame.
+    static INBOX: RefCell<Vec<News>> = const { RefCell::new(Vec::new()) };
+}
+
+/// Something the browser answered.
+pub enum News {
+    /// A file picked in the dialog or dropped on the page was read (or could not be).
+    Opened {
+        /// Its name.
+        name: String,
+        /// Its bytes, or why they could not be read.
+        bytes: Result<Vec<u8>, String>,
+    },
+    /// The clipboard took the share link (or refused it).
+    Copied(Result<(), String>),
+    /// A share link was opened in the page already showing the lab (only the address's
+    /// fragment changed, so the page did not reload): its fragment.
+    Link(String),
 }
 
 /// Starts the lab on the canvas `#lab`.
@@ -28,11 +54,20 @@ pub fn start() {
             log::error!("the page has no <canvas id=\"lab\">");
             return;
         };
+        let (app, saved, failed) = start_state();
         let result = eframe::WebRunner::new()
             .start(
                 canvas,
                 eframe::WebOptions::default(),
-                Box::new(|_cc| Ok(Box::new(crate::LabApp::with_preset(start_preset())))),
+                Box::new(move |cc| {
+                    listen_for_links(cc.egui_ctx.clone());
+                    Ok(Box::new(WebLab {
+                        app,
+                        autosave: Autosave::new(saved),
+                        hold: failed,
+                        storage_failed: false,
+                    }))
+                }),
             )
             .await;
         if let Err(e) = result {
@@ -44,21 +79,133 @@ pub fn start() {
     });
 }
 
-/// The preset the page's address asks for (`?preset=duplicate-triangle`), else the default.
-fn start_preset() -> Preset {
-    let search = web_sys::window()
-        .and_then(|w| w.location().search().ok())
-        .unwrap_or_default();
-    let asked = search
+/// The lab the page opens with ([`crate::persist::startup`]: a `#s=` link, then `?preset=`,
+/// then the saved state, then the default), the saved state's text, and whether something
+/// asked for failed to open.
+///
+/// A share link's fragment is removed from the address once read ([`forget_link`]).
+fn start_state() -> (LabApp, Option<String>, bool) {
+    let Some(window) = web_sys::window() else {
+        return (LabApp::default(), None, false);
+    };
+    let location = window.location();
+    let hash = location.hash().unwrap_or_default();
+    let search = location.search().unwrap_or_default();
+    let preset = search
         .trim_start_matches('?')
         .split('&')
-        .find_map(|pair| pair.strip_prefix("preset="));
-    match asked {
-        Some(slug) => Preset::from_slug(slug).unwrap_or_else(|| {
-            log::warn!("unknown preset {slug:?} in the address; opening the default scene");
-            Preset::default()
-        }),
-        None => Preset::default(),
+        .find_map(|pair| pair.strip_prefix("preset="))
+        .map(str::to_owned);
+    let saved = window
+        .local_storage()
+        .ok()
+        .flatten()
+        .and_then(|s| s.get_item(STORAGE_KEY).ok().flatten());
+    let fragment = (!hash.is_empty()).then_some(hash.as_str());
+    let (app, message) = crate::persist::startup(fragment, preset.as_deref(), saved.as_deref());
+    if let Some(m) = &message {
+        log::warn!("{m}");
+    }
+    if hash.starts_with(crate::persist::LINK_PREFIX) {
+        forget_link();
+    }
+    (app, saved, message.is_some())
+}
+
+/// Removes a share link's fragment from the address (keeping path and query), so that a
+/// reload shows the student's latest state, kept in `localStorage`, instead of the link again.
+pub fn forget_link() {
+    let Some(window) = web_sys::window() else {
+        return;
+    };
+    let location = window.location();
+    let address = format!(
+        "{}{}",
+        location.pathname().unwrap_or_default(),
+        location.search().unwrap_or_default()
+    );
+    if let Ok(history) = window.history()
+        && history
+            .replace_state_with_url(&JsValue::NULL, "", Some(&address))
+            .is_err()
+    {
+        log::warn!("could not remove the share link from the address");
+    }
+}
+
+/// Opens share links pasted into the address of the page already showing the lab: the
+/// browser then only changes the fragment (`hashchange`) and does not reload the page.
+fn listen_for_links(ctx: egui::Context) {
+    let Some(window) = web_sys::window() else {
+        return;
+    };
+    let on_change = Closure::<dyn FnMut()>::new(move || {
+        let hash = web_sys::window()
+            .and_then(|w| w.location().hash().ok())
+            .unwrap_or_default();
+        if hash.starts_with(crate::persist::LINK_PREFIX) {
+            deliver(&ctx, News::Link(hash));
+        }
+    });
+    if window
+        .add_event_listener_with_callback("hashchange", on_change.as_ref().unchecked_ref())
+        .is_err()
+    {
+        log::warn!("share links pasted into this page's address will need a reload");
+    }
+    // The listener lives as long as the page.
+    on_change.forget();
+}
+
+/// The lab, and the autosave that keeps its state in `localStorage`.
+struct WebLab {
+    app: LabApp,
+    autosave: Autosave,
+    /// The start-up failed and fell back to the default scene: keep the state saved earlier
+    /// until the student changes something (taken after the first frame, which fits the view).
+    hold: bool,
+    /// Whether the last write failed (said once in the status line, not every frame).
+    storage_failed: bool,
+}
+
+impl eframe::App for WebLab {
+    fn ui(&mut self, ui: &mut egui::Ui, frame: &mut eframe::Frame) {
+        // The lab publishes its report itself.
+        eframe::App::ui(&mut self.app, ui, frame);
+        if std::mem::take(&mut self.hold) {
+            self.autosave.keep_current(&self.app);
+        }
+        let now = ui.input(|i| i.time);
+        match self.autosave.poll(&self.app, now) {
+            AutosaveStep::Idle => {}
+            AutosaveStep::Wait(seconds) => {
+                ui.ctx()
+                    .request_repaint_after(std::time::Duration::from_secs_f64(seconds));
+            }
+            AutosaveStep::Save(json) => self.store(&json),
+        }
+    }
+}
+
+impl WebLab {
+    /// Writes the state to `localStorage`; says once when that fails (storage full, or off).
+    fn store(&mut self, json: &str) {
+        let written = web_sys::window()
+            .and_then(|w| w.local_storage().ok().flatten())
+            .is_some_and(|s| s.set_item(STORAGE_KEY, json).is_ok());
+        if written {
+            self.storage_failed = false;
+            return;
+        }
+        self.autosave.write_failed();
+        if !self.storage_failed {
+            self.storage_failed = true;
+            self.app.message = Some(
+                "This browser did not keep the lab's state (storage full or off): export the \
+                 scene to keep it."
+                    .to_owned(),
+            );
+        }
     }
 }
 
@@ -87,4 +234,129 @@ pub fn publish(report: &Report) {
     if element.set_attribute("data-report", &json).is_err() {
         log::warn!("could not write the lab's report to the page");
     }
+}
+
+/// What the browser answered since the last call.
+pub fn take_news() -> Vec<News> {
+    INBOX.with(|inbox| std::mem::take(&mut *inbox.borrow_mut()))
+}
+
+/// Puts an answer in the inbox and asks for a frame to read it.
+fn deliver(ctx: &egui::Context, news: News) {
+    INBOX.with(|inbox| inbox.borrow_mut().push(news));
+    ctx.request_repaint();
+}
+
+/// The page's address without query or fragment (origin and path), for share links.
+pub fn page_address() -> String {
+    web_sys::window()
+        .map(|w| {
+            let location = w.location();
+            format!(
+                "{}{}",
+                location.origin().unwrap_or_default(),
+                location.pathname().unwrap_or_default()
+            )
+        })
+        .unwrap_or_default()
+}
+
+/// Copies `text` to the clipboard; the outcome arrives as [`News::Copied`].
+pub fn copy_text(ctx: &egui::Context, text: &str) {
+    let clipboard = web_sys::window().map(|w| w.navigator().clipboard());
+    // `navigator.clipboard` is undefined outside secure contexts (plain http).
+    let Some(clipboard) = clipboard.filter(|c| !c.is_undefined()) else {
+        deliver(
+            ctx,
+            News::Copied(Err("this page may not use the clipboard".to_owned())),
+        );
+        return;
+    };
+    let promise = clipboard.write_text(text);
+    let ctx = ctx.clone();
+    wasm_bindgen_futures::spawn_local(async move {
+        let result = JsFuture::from(promise)
+            .await
+            .map(|_| ())
+            .map_err(|e| describe(&e));
+        deliver(&ctx, News::Copied(result));
+    });
+}
+
+/// Opens the browser's file dialog for one file of the `accept` types; the file arrives as
+/// [`News::Opened`] once read.
+///
+/// # Errors
+/// When the page cannot make the dialog's `<input type=file>`.
+pub fn pick_file(ctx: &egui::Context, accept: &str) -> Result<(), String> {
+    let document = web_sys::window()
+        .and_then(|w| w.document())
+        .ok_or("the page has no document")?;
+    let input: web_sys::HtmlInputElement = document
+        .create_element("input")
+        .map_err(|e| describe(&e))?
+        .dyn_into()
+        .map_err(|_| "not an input element".to_owned())?;
+    input.set_type("file");
+    input.set_accept(accept);
+    let picked = input.clone();
+    let ctx = ctx.clone();
+    // Called once, when a file is chosen (a cancelled dialog never calls it).
+    let on_change = Closure::once_into_js(move || {
+        if let Some(file) = picked.files().and_then(|files| files.get(0)) {
+            read_file(ctx, file, crate::persist::MAX_FILE_BYTES);
+        }
+    });
+    input.set_onchange(Some(on_change.unchecked_ref()));
+    input.click();
+    Ok(())
+}
+
+/// Reads a file dropped on the page; it arrives as [`News::Opened`].
+pub fn read_dropped(ctx: &egui::Context, file: &egui::DroppedFileHandle, limit: usize) {
+    let name = file.path().display().to_string();
+    match file.web_file() {
+        Some(web_file) => read_file(ctx.clone(), web_file.clone(), limit),
+        None => deliver(
+            ctx,
+            News::Opened {
+                name,
+                bytes: Err("the browser gave no file to read".to_owned()),
+            },
+        ),
+    }
+}
+
+/// Reads `file` as text (`File.text()`), refusing it unread when it is over `limit` bytes.
+fn read_file(ctx: egui::Context, file: web_sys::File, limit: usize) {
+    let name = file.name();
+    if file.size() > limit as f64 {
+        let bytes = Err(format!(
+            "it is {:.1} MiB; the lab reads at most {} MiB",
+            file.size() / f64::from(1 << 20),
+            limit >> 20
+        ));
+        deliver(&ctx, News::Opened { name, bytes });
+        return;
+    }
+    wasm_bindgen_futures::spawn_local(async move {
+        let bytes = JsFuture::from(file.text())
+            .await
+            .map_err(|e| describe(&e))
+            .and_then(|text| text.as_string().ok_or_else(|| "not text".to_owned()))
+            .map(String::into_bytes);
+        deliver(&ctx, News::Opened { name, bytes });
+    });
+}
+
+/// A JavaScript error as text.
+fn describe(error: &JsValue) -> String {
+    error
+        .as_string()
+        .or_else(|| {
+            error
+                .dyn_ref::<js_sys::Error>()
+                .map(|e| String::from(e.message()))
+        })
+        .unwrap_or_else(|| format!("{error:?}"))
 }

@@ -1,0 +1,380 @@
+//! [`SavedState`]: everything about the lab a student would miss after a reload, as plain data
+//! that serde writes and reads, and [`SavedState::capture`], which reads it off the lab.
+//!
+//! The schema is flat on purpose: objects of fixed fields, lists of shapes and lists of
+//! points, nothing that nests by itself, so hostile input cannot recurse (`serde_json`'s
+//! recursion limit stays on as well). Every field but `version` may be left out of a
+//! hand-written file and then takes the lab's default; an unknown field is an error, so a
+//! typo is not silently ignored.
+
+use bvhlab::glam::Vec2;
+use serde::{Deserialize, Serialize};
+
+use crate::app::{Display, LabApp, RayHandles};
+use crate::structures::BuildSettings;
+use crate::volumes::VolumeToggles;
+
+use super::names::{
+    Coord, KdSplitName, PresetSlug, ShapeName, SphereFitName, SplitName, StoredPoint,
+    StructureName, TaskName, VariantName,
+};
+
+/// The version of the format this lab writes and reads.
+pub const FORMAT_VERSION: u32 = 1;
+
+/// The lab's state as a scene file, a share link and the browser's saved state hold it.
+///
+/// # Limits
+/// What [`SavedState::apply`] (and so [`from_file`](super::from_file),
+/// [`from_fragment`](super::from_fragment) and [`startup`](super::startup)) accepts; anything
+/// else is refused with a message and the current scene is kept. Hostile input never panics.
+///
+/// - `version` must be [`FORMAT_VERSION`]; a file without one is not a scene file.
+/// - A file is at most [`MAX_FILE_BYTES`](super::MAX_FILE_BYTES); a link's fragment at most
+///   [`MAX_LINK_CHARS`](super::MAX_LINK_CHARS) characters, inflating to at most
+///   [`MAX_LINK_JSON_BYTES`](super::MAX_LINK_JSON_BYTES) (inflation stops there: a deflate
+///   bomb costs nothing).
+/// - At most [`MAX_SHAPES`](super::MAX_SHAPES) shapes, [`MAX_POINTS`](super::MAX_POINTS)
+///   points in all (one point cloud may have them all), and the points each kind needs (2
+///   for a segment or polyline, 3 for a polygon, 1 for a cloud).
+/// - Every coordinate, the radius and the view are finite numbers within
+///   ±[`MAX_COORD`](super::MAX_COORD); the radius is at least 0; the view's scale lies in
+///   the zoom range ([`MIN_SCALE`](super::MIN_SCALE) to [`MAX_SCALE`](super::MAX_SCALE)).
+/// - `k` is 1 to [`MAX_K`](super::MAX_K); leaf sizes 1 to
+///   [`MAX_LEAF_SIZE`](super::MAX_LEAF_SIZE); grid cells per axis 0 (automatic) to
+///   [`MAX_GRID_CELLS`](super::MAX_GRID_CELLS); quadtree depth 1 to
+///   [`MAX_QUADTREE_DEPTH`](super::MAX_QUADTREE_DEPTH); the selection lists shapes that exist.
+/// - Names (structure, split, task, preset...) are the strings of the `*Name` enums and
+///   [`PresetSlug`]; any other string is refused. A wrong type (a string for a number, a
+///   number for a list) is refused by serde, naming the line and column.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct SavedState {
+    /// [`FORMAT_VERSION`].
+    pub version: u32,
+    /// The preset chosen in the menu (what "Reload preset" reloads); a scene stored as a
+    /// preset's name sets it too.
+    pub preset: PresetSlug,
+    /// The shapes, or the preset they are (an unmodified preset is stored by name, so that
+    /// even the 10,000-segment scene fits in a link).
+    pub scene: SceneState,
+    /// The selected shapes, by index.
+    pub selection: Vec<usize>,
+    /// The structure's build settings.
+    pub structure: SettingsState,
+    /// The comparison structure's, when two are shown side by side.
+    pub compare: Option<SettingsState>,
+    /// The drawing switches.
+    pub display: DisplayState,
+    /// Which bounding volumes are drawn.
+    pub volumes: VolumeState,
+    /// The query ray's handles.
+    pub ray: Option<RayState>,
+    /// The query point.
+    pub point: Option<StoredPoint>,
+    /// How many neighbours the point query finds.
+    pub k: usize,
+    /// The range query's radius.
+    pub radius: Coord,
+    /// What playback steps through.
+    pub task: TaskName,
+    /// Which version of the algorithm.
+    pub variant: VariantName,
+    /// Where playback is.
+    pub playback: PlaybackState,
+    /// Pan and zoom.
+    pub view: ViewState,
+}
+
+/// The scene: `{"preset": "10k"}` (exactly that preset's shapes) or `{"shapes": [...]}`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub enum SceneState {
+    /// A preset's shapes, unmodified.
+    #[serde(rename = "preset")]
+    Preset(PresetSlug),
+    /// The shapes, in drawing order.
+    #[serde(rename = "shapes")]
+    Shapes(Vec<ShapeState>),
+}
+
+impl Default for SceneState {
+    fn default() -> Self {
+        Self::Preset(PresetSlug::default())
+    }
+}
+
+/// One shape: `{"kind": "polygon", "points": [[x, y], ...]}`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ShapeState {
+    /// What the points make.
+    pub kind: ShapeName,
+    /// Its points, in order.
+    pub points: Vec<StoredPoint>,
+}
+
+/// A structure's build settings ([`BuildSettings`]).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct SettingsState {
+    /// Which structure.
+    pub kind: StructureName,
+    /// BVH split method.
+    pub bvh_split: SplitName,
+    /// Sphere-tree node fit.
+    pub sphere_fit: SphereFitName,
+    /// BVH, k-d, BSP and quadtree leaf size.
+    pub leaf_size: usize,
+    /// k-d tree planes.
+    pub kd_split: KdSplitName,
+    /// Grid cells per axis; 0 means automatic.
+    pub grid_cells: u32,
+    /// Quadtree depth limit.
+    pub quadtree_depth: usize,
+}
+
+impl From<BuildSettings> for SettingsState {
+    fn from(s: BuildSettings) -> Self {
+        Self {
+            kind: s.kind.into(),
+            bvh_split: s.bvh_split.into(),
+            sphere_fit: s.sphere_fit.into(),
+            leaf_size: s.leaf_size,
+            kd_split: s.kd_split.into(),
+            grid_cells: s.grid_cells,
+            quadtree_depth: s.quadtree_depth,
+        }
+    }
+}
+
+impl Default for SettingsState {
+    fn default() -> Self {
+        BuildSettings::default().into()
+    }
+}
+
+/// The drawing switches ([`Display`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+#[expect(
+    clippy::struct_excessive_bools,
+    reason = "one switch per checkbox, as in Display"
+)]
+pub struct DisplayState {
+    /// Draw the structure's nodes.
+    pub structure: bool,
+    /// Draw nodes down to this depth.
+    pub max_depth: u32,
+    /// Colour primitives by the leaf that holds them.
+    pub leaf_colours: bool,
+    /// Mark the nodes the query visited, culled and pruned.
+    pub query_marks: bool,
+    /// Show the selection's bounding volumes.
+    pub volumes: bool,
+    /// Show the slab test of the ray against the selection's AABB.
+    pub slab_test: bool,
+}
+
+impl From<Display> for DisplayState {
+    fn from(d: Display) -> Self {
+        Self {
+            structure: d.structure,
+            max_depth: d.max_depth,
+            leaf_colours: d.leaf_colours,
+            query_marks: d.query_marks,
+            volumes: d.volumes,
+            slab_test: d.slab_test,
+        }
+    }
+}
+
+impl From<DisplayState> for Display {
+    fn from(d: DisplayState) -> Self {
+        Self {
+            structure: d.structure,
+            max_depth: d.max_depth,
+            leaf_colours: d.leaf_colours,
+            query_marks: d.query_marks,
+            volumes: d.volumes,
+            slab_test: d.slab_test,
+        }
+    }
+}
+
+impl Default for DisplayState {
+    fn default() -> Self {
+        Display::default().into()
+    }
+}
+
+/// Which bounding volumes are drawn ([`VolumeToggles`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+#[expect(
+    clippy::struct_excessive_bools,
+    reason = "one switch per volume, as in VolumeToggles"
+)]
+pub struct VolumeState {
+    /// The centroid sphere.
+    pub centroid: bool,
+    /// Ritter's sphere.
+    pub ritter: bool,
+    /// Welzl's sphere.
+    pub welzl: bool,
+    /// The AABB.
+    pub aabb: bool,
+    /// The OBB.
+    pub obb: bool,
+    /// The convex hull.
+    pub hull: bool,
+}
+
+impl From<VolumeToggles> for VolumeState {
+    fn from(t: VolumeToggles) -> Self {
+        Self {
+            centroid: t.centroid,
+            ritter: t.ritter,
+            welzl: t.welzl,
+            aabb: t.aabb,
+            obb: t.obb,
+            hull: t.hull,
+        }
+    }
+}
+
+impl From<VolumeState> for VolumeToggles {
+    fn from(t: VolumeState) -> Self {
+        Self {
+            centroid: t.centroid,
+            ritter: t.ritter,
+            welzl: t.welzl,
+            aabb: t.aabb,
+            obb: t.obb,
+            hull: t.hull,
+        }
+    }
+}
+
+impl Default for VolumeState {
+    fn default() -> Self {
+        VolumeToggles::default().into()
+    }
+}
+
+/// The ray's handles ([`RayHandles`]).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RayState {
+    /// Where the ray starts.
+    pub origin: StoredPoint,
+    /// A point it passes through.
+    pub target: StoredPoint,
+}
+
+/// Where playback is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct PlaybackState {
+    /// How many events are shown (clamped to the recording when it is made).
+    pub step: usize,
+    /// Whether playback stays at the end as the question changes (live mode).
+    pub live: bool,
+}
+
+impl Default for PlaybackState {
+    fn default() -> Self {
+        Self {
+            step: 0,
+            live: true,
+        }
+    }
+}
+
+/// Which part of the world the canvas shows.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ViewState {
+    /// The world point at the canvas centre.
+    pub center: StoredPoint,
+    /// Screen points per world unit.
+    pub scale: Coord,
+}
+
+impl Default for ViewState {
+    fn default() -> Self {
+        let view = crate::view::View::default();
+        Self {
+            center: stored(view.center),
+            scale: Coord(view.scale),
+        }
+    }
+}
+
+impl Default for SavedState {
+    fn default() -> Self {
+        Self::capture(&LabApp::default())
+    }
+}
+
+impl SavedState {
+    /// The lab's state, with the scene stored as its preset's name when it is that preset
+    /// unmodified (for links and the browser's saved state, which must stay small).
+    pub fn capture(app: &LabApp) -> Self {
+        let mut state = Self::capture_full(app);
+        if app.scene.shapes() == app.preset.build().0.shapes() {
+            state.scene = SceneState::Preset(PresetSlug(app.preset));
+        }
+        state
+    }
+
+    /// The lab's state with every shape written out (for files, which should open the same
+    /// even if a preset changes one day).
+    pub fn capture_full(app: &LabApp) -> Self {
+        Self {
+            version: FORMAT_VERSION,
+            preset: PresetSlug(app.preset),
+            scene: SceneState::Shapes(
+                app.scene
+                    .shapes()
+                    .iter()
+                    .map(|s| ShapeState {
+                        kind: s.kind.into(),
+                        points: s.points.iter().copied().map(stored).collect(),
+                    })
+                    .collect(),
+            ),
+            selection: app.selection.clone(),
+            structure: app.lane.settings.into(),
+            compare: app.compare.as_ref().map(|lane| lane.settings.into()),
+            display: app.display.into(),
+            volumes: app.volume_toggles.into(),
+            ray: app.ray.map(|r: RayHandles| RayState {
+                origin: stored(r.origin),
+                target: stored(r.target),
+            }),
+            point: app.point.map(stored),
+            k: app.k,
+            radius: Coord(app.radius),
+            task: app.task.into(),
+            variant: app.variant.into(),
+            playback: PlaybackState {
+                step: app.playback.step,
+                live: app.playback.at_end,
+            },
+            view: ViewState {
+                center: stored(app.view.center),
+                scale: Coord(app.view.scale),
+            },
+        }
+    }
+}
+
+/// A point as stored.
+pub(super) fn stored(p: Vec2) -> StoredPoint {
+    [Coord(p.x), Coord(p.y)]
+}
+
+/// A stored point.
+pub(super) fn point(p: StoredPoint) -> Vec2 {
+    Vec2::new(p[0].0, p[1].0)
+}
