@@ -15,6 +15,7 @@ import { mkdirSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { dirname, join, relative, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
+import { deflateSync } from 'node:zlib';
 import { chromium } from 'playwright-core';
 import pngjs from 'pngjs';
 
@@ -358,6 +359,13 @@ async function runOne({ renderer, label, search = '', primitives, args }) {
       `at the end the counters ${JSON.stringify(end.so_far)} are not the totals ${JSON.stringify(end.total)}`);
     check(end.total[0] === q.nodes_visited && end.total[2] === q.primitive_tests, `playback totals ${JSON.stringify(end.total)} differ from the query's`);
 
+    // 7. Nothing lost (first run only): step to 3, reload, and find the ray, the structure and
+    // the step again; then open a share link built from the saved state in a fresh browser
+    // profile and find the same state there.
+    if (label === 'WebGPU') {
+      summary.persistence = await reloadAndShare(page, args, answered);
+    }
+
     check(problems.length === 0, `the page reported problems:\n  ${problems.join('\n  ')}`);
     return summary;
   } catch (error) {
@@ -374,6 +382,55 @@ async function runOne({ renderer, label, search = '', primitives, args }) {
     await context.close().catch(() => {});
     rmSync(profile, { recursive: true, force: true });
   }
+}
+
+const STORAGE_KEY = 'bvh-lab/state/v1';
+
+/// The lab's state as the report shows it: what must survive a reload or a link.
+function essentials(r) {
+  return JSON.stringify({
+    structure: r.structure,
+    primitives: r.scene.primitives,
+    ray: r.query?.ray,
+    hit: r.query?.hit?.primitive,
+    step: r.playback?.[0]?.step,
+    steps: r.playback?.[0]?.steps,
+  });
+}
+
+async function reloadAndShare(page, args, answered) {
+  await page.keyboard.press('Home');
+  for (let i = 0; i < 3; i++) await page.keyboard.press('Period');
+  const { report: before } = await waitForReport(page, (r) => r.playback?.[0]?.step === 3, QUERY_TIMEOUT_MS, 'playback at step 3');
+  check(before.query?.ray?.join() === answered.query.ray.join(), 'the ray moved while stepping');
+  // The autosave writes at most every 0.5 s.
+  const saved = await page
+    .waitForFunction((key) => {
+      const s = localStorage.getItem(key);
+      return s && JSON.parse(s).playback?.step === 3 ? s : null;
+    }, STORAGE_KEY, { timeout: QUERY_TIMEOUT_MS })
+    .then((h) => h.jsonValue());
+  await page.reload({ waitUntil: 'load' });
+  const { report: reloaded } = await waitForReport(page, (r) => r.ready && r.playback?.[0]?.step === 3 && r.query != null, READY_TIMEOUT_MS, 'the state after a reload');
+  check(essentials(reloaded) === essentials(before), `after a reload: ${essentials(reloaded)}, before: ${essentials(before)}`);
+  await screenshot(page, 'WebGPU-reloaded.png');
+
+  // A share link, encoded as the lab encodes it (zlib, base64url, #s=), opened in a browser
+  // with no saved state.
+  const link = `${url.split('#')[0]}#s=${deflateSync(Buffer.from(saved)).toString('base64url')}`;
+  const profile = mkdtempSync(join(tmpdir(), 'bvhlab-e2e-link-'));
+  const other = await chromium.launchPersistentContext(profile, { executablePath, headless: true, args, viewport: VIEWPORT, deviceScaleFactor: 1 });
+  try {
+    const fresh = other.pages()[0] ?? (await other.newPage());
+    await fresh.goto(link, { waitUntil: 'load' });
+    const { report: shared } = await waitForReport(fresh, (r) => r.ready && r.playback?.[0]?.step === 3 && r.query != null, READY_TIMEOUT_MS, 'the state from the share link');
+    check(essentials(shared) === essentials(before), `from the link: ${essentials(shared)}, shared: ${essentials(before)}`);
+    await screenshot(fresh, 'WebGPU-shared.png');
+  } finally {
+    await other.close().catch(() => {});
+    rmSync(profile, { recursive: true, force: true });
+  }
+  return { link: link.length, state: essentials(before) };
 }
 
 function describe(s) {
@@ -396,6 +453,9 @@ function describe(s) {
   );
   lines.push(`  ray drawn along ${s.changedAlongRay.changed} of ${s.changedAlongRay.samples} samples of the drag line`);
   lines.push(`  stepped 5 steps with the keyboard: counters so far ${JSON.stringify(s.stepped)} (nodes, bound tests, primitive tests)`);
+  if (s.persistence) {
+    lines.push(`  reload and a ${s.persistence.link}-character share link both gave back ${s.persistence.state} (target/e2e/WebGPU-reloaded.png, WebGPU-shared.png)`);
+  }
   lines.push(`  screenshots: ${s.screenshots.join(', ')}`);
   return lines.join('\n');
 }
