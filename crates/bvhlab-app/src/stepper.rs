@@ -57,7 +57,7 @@ pub fn stepper(app: &mut LabApp, ui: &mut egui::Ui) {
                     .color(colors::QUERY),
             );
         }
-        lane_state(app, lane, i, ui);
+        lane_state(lane, i, ui);
         ui.separator();
     }
 }
@@ -161,7 +161,7 @@ fn transport(app: &mut LabApp, ui: &mut egui::Ui) {
     );
 }
 
-fn lane_state(app: &LabApp, lane: &Lane, index: usize, ui: &mut egui::Ui) {
+fn lane_state(lane: &Lane, index: usize, ui: &mut egui::Ui) {
     let rec = match &lane.recording {
         Some(Ok(rec)) => rec,
         Some(Err(why)) => {
@@ -201,7 +201,6 @@ fn lane_state(app: &LabApp, lane: &Lane, index: usize, ui: &mut egui::Ui) {
     if q.task == Task::Build {
         crate::build_view::split_view(lane, snap, ui);
     }
-    let _ = app;
 }
 
 fn pseudocode_view(
@@ -222,7 +221,6 @@ fn pseudocode_view(
     if !code.note.is_empty() {
         ui.label(RichText::new(code.note).small().weak());
     }
-    let _ = index;
 }
 
 /// A counter's name, how to read it from [`Counters`], its total and brute force's.
