@@ -265,31 +265,23 @@ impl LabApp {
         }
         let len = self.steps();
         let p = &mut self.playback;
-        let mut shown = if p.at_end { len } else { p.step };
         ui.input(|i| {
             // Jumps first, then steps: "Home . ." in one frame means step 2.
             if i.key_pressed(egui::Key::Home) {
                 p.playing = false;
                 p.go(0, len);
-                shown = 0;
             }
             if i.key_pressed(egui::Key::End) {
                 p.go(len, len);
-                shown = len;
             }
             // Several presses can arrive in one frame (fast typing, a slow frame).
             let forward = i.num_presses(egui::Key::Period);
             let back = i.num_presses(egui::Key::Comma);
             if forward + back > 0 {
-                p.playing = false;
-                p.go((shown + forward).saturating_sub(back), len);
+                p.step_by(forward as isize - back as isize, len);
             }
             if i.key_pressed(egui::Key::Space) {
-                if p.playing {
-                    p.playing = false;
-                } else {
-                    p.play(len);
-                }
+                p.toggle(len);
             }
         });
     }

@@ -121,9 +121,22 @@ impl Lane {
         let Some(built) = &self.built else {
             return false;
         };
+        let changed = self.recording.is_none() || self.last_question.as_ref() != Some(question);
+        if changed {
+            self.recording = Some(Recording::record(built, *question));
+            self.last_question = Some(*question);
+            self.snapshot = None;
+        }
+        // The live answers: read from the recording when it asks the same question.
+        let recorded = self.recording.as_ref().and_then(|r| r.as_ref().ok());
         match question.ray {
             Some(ray) if self.ray_outcome.as_ref().is_none_or(|o| o.ray != ray) => {
-                self.ray_outcome = Some(RayOutcome::run(&built.structure, &built.brute, ray));
+                self.ray_outcome = Some(
+                    recorded
+                        .and_then(Recording::ray_outcome)
+                        .filter(|o| o.ray == ray)
+                        .unwrap_or_else(|| RayOutcome::run(&built.structure, &built.brute, ray)),
+                );
             }
             None => self.ray_outcome = None,
             Some(_) => {}
@@ -136,19 +149,19 @@ impl Lane {
                     .as_ref()
                     .is_none_or(|o| o.point != p || o.k != k)
                 {
-                    self.point_outcome =
-                        Some(PointOutcome::run(&built.structure, &built.brute, p, k));
+                    self.point_outcome = Some(
+                        recorded
+                            .and_then(Recording::point_outcome)
+                            .filter(|o| o.point == p && o.k == k)
+                            .unwrap_or_else(|| {
+                                PointOutcome::run(&built.structure, &built.brute, p, k)
+                            }),
+                    );
                 }
             }
             None => self.point_outcome = None,
         }
-        if self.recording.is_some() && self.last_question.as_ref() == Some(question) {
-            return false;
-        }
-        self.recording = Some(Recording::record(built, *question));
-        self.last_question = Some(*question);
-        self.snapshot = None;
-        true
+        changed
     }
 
     /// The recording, if there is one.
@@ -170,11 +183,7 @@ impl Lane {
             self.snapshot = None;
             return;
         };
-        let step = if playback.at_end {
-            rec.events.len()
-        } else {
-            playback.step.min(rec.events.len())
-        };
+        let step = playback.shown(rec.events.len());
         if self.snapshot.as_ref().is_some_and(|s| s.step == step) {
             return;
         }

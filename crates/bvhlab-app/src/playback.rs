@@ -73,6 +73,26 @@ impl Playback {
         self.carry = 0.0;
     }
 
+    /// The step shown for a recording of `len` events (the end in live mode).
+    pub fn shown(&self, len: usize) -> usize {
+        if self.at_end { len } else { self.step.min(len) }
+    }
+
+    /// Moves `delta` steps from the one shown, and stops playing.
+    pub fn step_by(&mut self, delta: isize, len: usize) {
+        self.playing = false;
+        self.go(self.shown(len).saturating_add_signed(delta), len);
+    }
+
+    /// Play or pause.
+    pub fn toggle(&mut self, len: usize) {
+        if self.playing {
+            self.playing = false;
+        } else {
+            self.play(len);
+        }
+    }
+
     /// Advances a playing transport by `seconds`; true when the step changed.
     pub fn advance(&mut self, seconds: f64, len: usize) -> bool {
         if !self.playing {

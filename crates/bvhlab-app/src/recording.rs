@@ -124,6 +124,48 @@ impl Recording {
         })
     }
 
+    /// The live ray answer, when this recording is the full first-hit query (so a drag
+    /// runs the query once, not once for the panel and once for playback).
+    pub fn ray_outcome(&self) -> Option<crate::query::RayOutcome> {
+        let q = &self.question;
+        match (&self.answer, &self.brute_answer, q.ray) {
+            (Answer::Hit(hit), Some(Answer::Hit(brute)), Some(ray))
+                if q.task == Task::FirstHit && q.variant == Variant::Full =>
+            {
+                Some(crate::query::RayOutcome {
+                    ray,
+                    hit: *hit,
+                    cost: self.cost,
+                    brute_hit: *brute,
+                    brute_cost: self.brute_cost,
+                    events: self.events.clone(),
+                })
+            }
+            _ => None,
+        }
+    }
+
+    /// The live point answer, when this recording is the full k-nearest query.
+    pub fn point_outcome(&self) -> Option<crate::query::PointOutcome> {
+        let q = &self.question;
+        match (&self.answer, &self.brute_answer, q.point) {
+            (Answer::Nearest(nearest), Some(Answer::Nearest(brute)), Some(point))
+                if q.task == Task::Nearest && q.variant == Variant::Full =>
+            {
+                Some(crate::query::PointOutcome {
+                    point,
+                    k: q.k.max(1),
+                    nearest: nearest.clone(),
+                    cost: self.cost,
+                    brute_nearest: brute.clone(),
+                    brute_cost: self.brute_cost,
+                    events: self.events.clone(),
+                })
+            }
+            _ => None,
+        }
+    }
+
     /// Whether the structure's answer is brute force's (builds always agree). An any-hit
     /// query may find any hit: it agrees when both find one or neither does.
     pub fn agrees(&self) -> bool {

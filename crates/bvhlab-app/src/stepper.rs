@@ -129,26 +129,20 @@ fn transport(app: &mut LabApp, ui: &mut egui::Ui) {
             p.go(0, len);
         }
         if ui.button("<").on_hover_text("one step back").clicked() {
-            p.playing = false;
-            p.go(p.step.saturating_sub(1), len);
+            p.step_by(-1, len);
         }
         let play = if p.playing { "pause" } else { "play" };
         if ui.button(play).clicked() {
-            if p.playing {
-                p.playing = false;
-            } else {
-                p.play(len);
-            }
+            p.toggle(len);
         }
         if ui.button(">").on_hover_text("one step forward").clicked() {
-            p.playing = false;
-            p.go(p.step + 1, len);
+            p.step_by(1, len);
         }
         if ui.button(">|").on_hover_text("to the end (live)").clicked() {
             p.go(len, len);
         }
     });
-    let mut step = if p.at_end { len } else { p.step };
+    let mut step = p.shown(len);
     let slider = egui::Slider::new(&mut step, 0..=len).text(format!("step of {len}"));
     if ui.add(slider).changed() {
         p.playing = false;

@@ -290,3 +290,69 @@ fn the_slides_versions_answer_alike_and_cost_more() {
     let err = Recording::record(&built, q).expect_err("no slides' version for k-d trees");
     assert!(err.contains("only for BVHs"), "{err}");
 }
+
+#[test]
+fn the_live_answers_read_from_a_recording_are_the_ones_a_query_gives() {
+    use bvhlab_app::query::{PointOutcome, RayOutcome};
+    let scene = random_segments(300, 50.0, 3.0, 31);
+    for kind in StructureKind::ALL {
+        let built = Built2d::new(
+            &scene,
+            BuildSettings {
+                kind,
+                ..BuildSettings::default()
+            },
+        );
+        for (ray, point) in rays() {
+            let rec = Recording::record(&built, question(Task::FirstHit, ray, point)).expect("ray");
+            let read = rec
+                .ray_outcome()
+                .expect("a full first hit gives the live answer");
+            let run = RayOutcome::run(&built.structure, &built.brute, ray);
+            assert_eq!(
+                (
+                    read.hit,
+                    read.cost,
+                    read.brute_hit,
+                    read.brute_cost,
+                    &read.events
+                ),
+                (
+                    run.hit,
+                    run.cost,
+                    run.brute_hit,
+                    run.brute_cost,
+                    &run.events
+                ),
+                "{kind:?}"
+            );
+            let rec =
+                Recording::record(&built, question(Task::Nearest, ray, point)).expect("point");
+            let read = rec
+                .point_outcome()
+                .expect("a full k nearest gives the live answer");
+            let run = PointOutcome::run(&built.structure, &built.brute, point, 3);
+            assert_eq!(
+                (
+                    &read.nearest,
+                    read.cost,
+                    &read.brute_nearest,
+                    read.brute_cost,
+                    &read.events
+                ),
+                (
+                    &run.nearest,
+                    run.cost,
+                    &run.brute_nearest,
+                    run.brute_cost,
+                    &run.events
+                ),
+                "{kind:?}"
+            );
+            assert!(
+                rec.ray_outcome().is_none(),
+                "a point question has no ray answer"
+            );
+        }
+    }
+}

@@ -59,22 +59,20 @@ pub(super) fn draw(
     display.structure &= !building;
     let key = LayerKey {
         revision: app.scene.revision(),
-        settings: lane(app, index).settings,
+        settings: app.lane_at(index).settings,
         view,
         display,
         selection: app.selection.clone(),
         pixels_per_point: painter.ctx().pixels_per_point(),
     };
-    let cached = lane(app, index)
+    let cached = app
+        .lane_at(index)
         .static_layer
         .as_ref()
         .is_some_and(|l| l.key == key);
     if !cached {
         let mut wp = WorldPainter::new(&view);
-        if display.structure {
-            draw_structure(lane(app, index), app.display.max_depth, &mut wp);
-        }
-        draw_scene(app, lane(app, index), &mut wp);
+        static_shapes(app, index, &mut wp);
         let mesh = tessellate(painter.ctx(), wp.shapes, view.rect);
         let layer = StaticLayer {
             key,
@@ -84,27 +82,15 @@ pub(super) fn draw(
             l.static_layer = Some(layer);
         }
     }
-    if let Some(layer) = &lane(app, index).static_layer {
+    if let Some(layer) = &app.lane_at(index).static_layer {
         painter.add(egui::Shape::Mesh(layer.mesh.clone()));
     }
     let mut wp = WorldPainter::new(&view);
-    let this = lane(app, index);
-    if building {
-        steps::draw_build_state(this, &mut wp);
-    }
-    if app.display.query_marks && !building {
-        draw_marks(this, app.display.max_depth, &mut wp);
-        steps::draw_step(this, app.playback.at_end, &mut wp);
-    }
-    if let Some((at, node)) = app.hovered
-        && at == index
-    {
-        steps::draw_hovered(this, node, &mut wp);
-    }
-    if index == 0 && (app.display.volumes || app.display.slab_test) {
-        draw_volumes(app, &mut wp);
-    }
-    draw_queries(app, lane(app, index), &mut wp, painter);
+    let hovered = app
+        .hovered
+        .filter(|(at, _)| *at == index)
+        .map(|(_, node)| node);
+    query_shapes(app, index, hovered, &mut wp, painter);
     if app.tool == Tool::Obb
         && let Some(pair) = &app.obb_pair
     {
@@ -123,29 +109,46 @@ pub fn picture(
     painter: &egui::Painter,
 ) -> Vec<egui::Shape> {
     let mut wp = WorldPainter::new(&view);
-    let building = app.task == Task::Build && !app.playback.at_end;
-    if app.display.structure && !building {
-        draw_structure(lane(app, index), app.display.max_depth, &mut wp);
-    }
-    draw_scene(app, lane(app, index), &mut wp);
-    let this = lane(app, index);
-    if building {
-        steps::draw_build_state(this, &mut wp);
-    }
-    if app.display.query_marks && !building {
-        draw_marks(this, app.display.max_depth, &mut wp);
-        steps::draw_step(this, app.playback.at_end, &mut wp);
-    }
-    if index == 0 && (app.display.volumes || app.display.slab_test) {
-        draw_volumes(app, &mut wp);
-    }
-    draw_queries(app, lane(app, index), &mut wp, painter);
+    static_shapes(app, index, &mut wp);
+    query_shapes(app, index, None, &mut wp, painter);
     wp.shapes
 }
 
-/// Lane `index` (the main one for anything but 1).
-pub(super) fn lane(app: &LabApp, index: usize) -> &Lane {
-    app.lane_at(index)
+/// What changes only with the scene, the structure, the view and the switches: the
+/// structure's nodes (not while a build is stepped through) and the scene.
+fn static_shapes(app: &LabApp, index: usize, wp: &mut WorldPainter<'_>) {
+    let building = app.task == Task::Build && !app.playback.at_end;
+    if app.display.structure && !building {
+        draw_structure(app.lane_at(index), app.display.max_depth, wp);
+    }
+    draw_scene(app, app.lane_at(index), wp);
+}
+
+/// What changes with the query and the playback step: a build's progress or the query's
+/// marks and step, the `hovered` node, the bounding volumes, the ray and the point.
+fn query_shapes(
+    app: &mut LabApp,
+    index: usize,
+    hovered: Option<bvhlab::NodeId>,
+    wp: &mut WorldPainter<'_>,
+    painter: &egui::Painter,
+) {
+    let building = app.task == Task::Build && !app.playback.at_end;
+    let this = app.lane_at(index);
+    if building {
+        steps::draw_build_state(this, wp);
+    }
+    if app.display.query_marks && !building {
+        draw_marks(this, app.display.max_depth, wp);
+        steps::draw_step(this, app.playback.at_end, wp);
+    }
+    if let Some(node) = hovered {
+        steps::draw_hovered(this, node, wp);
+    }
+    if index == 0 && (app.display.volumes || app.display.slab_test) {
+        draw_volumes(app, wp);
+    }
+    draw_queries(app, app.lane_at(index), wp, painter);
 }
 
 fn lane_mut(app: &mut LabApp, index: usize) -> Option<&mut Lane> {

@@ -37,7 +37,7 @@ pub fn canvas(app: &mut LabApp, ui: &mut egui::Ui) {
         && !response.dragged()
     {
         let world = app.view.to_world(p);
-        let lane = draw::lane(app, i);
+        let lane = app.lane_at(i);
         if let Some(built) = &lane.built {
             let node = steps::node_at(&built.outline, world, app.display.max_depth);
             app.hovered = node.map(|n| (i, n));
@@ -50,7 +50,7 @@ pub fn canvas(app: &mut LabApp, ui: &mut egui::Ui) {
         let hover = response.hover_pos().filter(|p| rect.contains(*p));
         draw::draw(app, i, view, &clipped, hover);
         if app.compare.is_some() {
-            let name = draw::lane(app, i).settings.kind.label();
+            let name = app.lane_at(i).settings.kind.label();
             clipped.text(
                 rect.left_top() + egui::vec2(8.0, 6.0),
                 egui::Align2::LEFT_TOP,

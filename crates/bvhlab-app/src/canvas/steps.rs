@@ -3,7 +3,7 @@
 //! tree diagram (or on the canvas) with its primitives.
 
 use bvhlab::glam::Vec2;
-use bvhlab::{NodeId, NodeOutline};
+use bvhlab::{Event, NodeId, NodeOutline};
 use egui::Stroke;
 
 use crate::lane::Lane;
@@ -94,8 +94,6 @@ pub(super) fn draw_step(lane: &Lane, live: bool, wp: &mut WorldPainter<'_>) {
         wp.ring(p, r, Stroke::new(1.0, colors::ANSWER.gamma_multiply(0.6)));
     }
 }
-
-use bvhlab::Event;
 
 /// A build in progress: the nodes made so far, the current one, its split and which side
 /// each of its primitives goes to.
