@@ -39,6 +39,7 @@ pub mod tool;
 pub mod tree_panel;
 pub mod tree_view;
 pub mod view;
+pub mod view3d;
 pub mod volumes;
 #[cfg(target_arch = "wasm32")]
 pub mod web;

@@ -1,0 +1,6 @@
+//! The 3D view: meshes, an orbit camera, rays cast by clicking, and the structures and their
+//! traversals drawn with wgpu.
+//!
+//! - [`camera`]: the orbit camera and the one definition of a pixel's ray.
+
+pub mod camera;
