@@ -38,6 +38,18 @@ pub struct Built2d {
 }
 
 impl Built2d {
+    /// What a recording asks questions of.
+    pub fn subject(&self) -> crate::recording::Subject<'_, Segment2> {
+        crate::recording::Subject {
+            structure: &self.structure,
+            brute: &self.brute,
+            prims: &self.prims.segments,
+            settings: self.settings,
+            revision: self.revision,
+            node_count: self.outline.len(),
+        }
+    }
+
     /// Builds `settings`' structure on `scene`.
     pub fn new(scene: &Scene, settings: BuildSettings) -> Self {
         let prims = scene.primitives();

@@ -9,7 +9,7 @@
 
 use bvhlab::glam::Vec2;
 use bvhlab::structure::{PrimitiveResult, PruneReason};
-use bvhlab::{Event, NodeId};
+use bvhlab::{Event, NodeId, Vector};
 
 use crate::pseudocode::Task;
 use crate::query::NodeMarks;
@@ -126,7 +126,7 @@ pub struct Counters {
 
 impl Counters {
     /// What one event adds.
-    pub fn of(event: &Event<Vec2>) -> Self {
+    pub fn of<V: Vector>(event: &Event<V>) -> Self {
         let mut c = Self::default();
         match event {
             Event::EnterNode { .. } | Event::CellEnter { .. } => c.nodes = 1,
@@ -190,11 +190,11 @@ pub struct CellStep {
 
 /// A build's split, as reported.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SplitStep {
+pub struct SplitStep<V: Vector = Vec2> {
     /// The node split.
     pub node: NodeId,
     /// The plane's normal.
-    pub normal: Vec2,
+    pub normal: V,
     /// The plane's offset.
     pub offset: f32,
     /// Primitives below the plane.
@@ -205,9 +205,9 @@ pub struct SplitStep {
     pub cost: Option<f32>,
 }
 
-/// The state of the algorithm after the first `step` events.
-#[derive(Clone, Debug, Default)]
-pub struct Snapshot {
+/// The state of the algorithm after the first `step` events (in 2D by default).
+#[derive(Clone, Debug)]
+pub struct Snapshot<V: Vector = Vec2> {
     /// How many events are folded in.
     pub step: usize,
     /// Nodes visited, culled and pruned, and primitives tested, so far.
@@ -215,7 +215,7 @@ pub struct Snapshot {
     /// The node the last event concerned.
     pub current: Option<NodeId>,
     /// The last event.
-    pub event: Option<Event<Vec2>>,
+    pub event: Option<Event<V>>,
     /// The nodes waiting, next first.
     pub frontier: Vec<Pending>,
     /// How they are kept.
@@ -234,12 +234,37 @@ pub struct Snapshot {
     /// Builds: which nodes exist so far (indexed by node id).
     pub existing: Vec<bool>,
     /// Builds: the current node's split, once chosen.
-    pub split: Option<SplitStep>,
+    pub split: Option<SplitStep<V>>,
 }
 
-impl Snapshot {
+impl<V: Vector> Default for Snapshot<V> {
+    fn default() -> Self {
+        Self {
+            step: 0,
+            marks: NodeMarks::default(),
+            current: None,
+            event: None,
+            frontier: Vec::new(),
+            frontier_kind: None,
+            calls: Vec::new(),
+            cells: Vec::new(),
+            best: Vec::new(),
+            so_far: Counters::default(),
+            this_step: Counters::default(),
+            existing: Vec::new(),
+            split: None,
+        }
+    }
+}
+
+impl<V: Vector> Snapshot<V> {
     /// Folds the first `step` events of `recording` over a structure of `node_count` nodes.
-    pub fn at(recording: &Recording, kind: StructureKind, step: usize, node_count: usize) -> Self {
+    pub fn at(
+        recording: &Recording<V>,
+        kind: StructureKind,
+        step: usize,
+        node_count: usize,
+    ) -> Self {
         let events = &recording.events[..step.min(recording.events.len())];
         let task = recording.question.task;
         let mut s = Self {
@@ -330,7 +355,7 @@ impl Snapshot {
 
     /// A build event: nodes come into existence, and the current node's split is shown
     /// until its first child is made.
-    fn apply_build(&mut self, event: &Event<Vec2>) {
+    fn apply_build(&mut self, event: &Event<V>) {
         let s = self;
         match *event {
             Event::BuildNode { node, .. } => {
@@ -369,7 +394,7 @@ impl Snapshot {
 }
 
 /// The node an event is about.
-fn node_of(event: &Event<Vec2>) -> Option<NodeId> {
+fn node_of<V: Vector>(event: &Event<V>) -> Option<NodeId> {
     match *event {
         Event::EnterNode { node, .. }
         | Event::RayBoundTest { node, .. }
@@ -423,7 +448,7 @@ fn offer(best: &mut Vec<(u32, f32)>, prim: u32, value: f32, k: usize) {
 }
 
 /// A sentence for an event, in the lecture's words.
-pub fn describe(event: &Event<Vec2>) -> String {
+pub fn describe<V: Vector>(event: &Event<V>) -> String {
     match *event {
         Event::EnterNode { node, depth } => format!("enter node {} (depth {depth})", node.0),
         Event::RayBoundTest { node, interval } => match interval {
@@ -467,10 +492,14 @@ pub fn describe(event: &Event<Vec2>) -> String {
             t_enter,
             t_exit,
             ..
-        } => format!(
-            "enter cell ({}, {}) for t in [{t_enter:.3}, {t_exit:.3}]",
-            coords[0], coords[1]
-        ),
+        } => {
+            let cell = if V::DIM == 3 {
+                format!("({}, {}, {})", coords[0], coords[1], coords[2])
+            } else {
+                format!("({}, {})", coords[0], coords[1])
+            };
+            format!("enter cell {cell} for t in [{t_enter:.3}, {t_exit:.3}]")
+        }
         Event::PlaneCrossed { node, t } => {
             format!("the ray crosses node {}'s plane at t = {t:.3}", node.0)
         }
@@ -500,14 +529,20 @@ pub fn describe(event: &Event<Vec2>) -> String {
     }
 }
 
-fn plane_name(normal: Vec2) -> String {
-    if normal == Vec2::X {
-        "x".to_owned()
-    } else if normal == Vec2::Y {
-        "y".to_owned()
-    } else {
-        format!("({:.2}, {:.2})", normal.x, normal.y)
+/// `x`, `y` or `z` for an axis-aligned plane's normal; the normal's coordinates otherwise.
+fn plane_name<V: Vector>(normal: V) -> String {
+    let axes = ["x", "y", "z"];
+    for (axis, name) in axes.iter().enumerate().take(V::DIM) {
+        let mut unit = V::ZERO;
+        unit.set_coord(axis, 1.0);
+        if normal == unit {
+            return (*name).to_owned();
+        }
     }
+    let coords: Vec<String> = (0..V::DIM)
+        .map(|i| format!("{:.2}", normal.coord(i)))
+        .collect();
+    format!("({})", coords.join(", "))
 }
 
 fn why(reason: PruneReason) -> String {

@@ -7,8 +7,12 @@
 //! event `k` with the same code.
 
 use bvhlab::glam::Vec2;
+use bvhlab::structure::bvh::NodeVolume;
 use bvhlab::structure::{PrimitiveResult, PruneReason};
-use bvhlab::{BruteForce, Event, Hit, Nearest, QueryCost, Ray2, Recorder, Segment2, SpatialIndex};
+use bvhlab::{
+    Aabb, BruteForce, Event, Hit, Nearest, Obb, Primitive, QueryCost, Ray, Recorder, SpatialIndex,
+    Sphere, Vector,
+};
 
 use crate::structures::Built;
 
@@ -38,7 +42,7 @@ pub struct NodeMarks {
 impl NodeMarks {
     /// Folds `events` over a structure of `node_count` nodes. A node the query entered is
     /// [`NodeMark::Visited`] whatever else was said about it.
-    pub fn from_events(events: &[Event<Vec2>], node_count: usize) -> Self {
+    pub fn from_events<V: Vector>(events: &[Event<V>], node_count: usize) -> Self {
         let mut marks = Self {
             nodes: vec![None; node_count],
             ..Self::default()
@@ -85,11 +89,11 @@ impl NodeMarks {
     }
 }
 
-/// A ray query's outcome on the structure and on brute force.
+/// A ray query's outcome on the structure and on brute force (in 2D by default).
 #[derive(Clone, Debug)]
-pub struct RayOutcome {
+pub struct RayOutcome<V: Vector = Vec2> {
     /// The ray.
-    pub ray: Ray2,
+    pub ray: Ray<V>,
     /// The structure's first hit.
     pub hit: Option<Hit>,
     /// What it cost.
@@ -99,12 +103,18 @@ pub struct RayOutcome {
     /// What brute force cost.
     pub brute_cost: QueryCost,
     /// Everything the structure reported, in order.
-    pub events: Vec<Event<Vec2>>,
+    pub events: Vec<Event<V>>,
 }
 
-impl RayOutcome {
+impl<V: Vector> RayOutcome<V> {
     /// Casts `ray` through `built` and through brute force over the same primitives.
-    pub fn run(built: &Built, brute: &BruteForce<Segment2>, ray: Ray2) -> Self {
+    pub fn run<P>(built: &Built<P>, brute: &BruteForce<P>, ray: Ray<V>) -> Self
+    where
+        P: Primitive<Point = V>,
+        Sphere<V>: NodeVolume<Point = V>,
+        Aabb<V>: NodeVolume<Point = V>,
+        Obb<V>: NodeVolume<Point = V>,
+    {
         let mut recorder = Recorder::default();
         let traced = built.ray_first_hit(&ray, &mut recorder);
         let reference = brute.ray_first_hit_observed(&ray, f32::INFINITY, &mut ());
@@ -124,33 +134,39 @@ impl RayOutcome {
     }
 
     /// The hit point, if any.
-    pub fn hit_point(&self) -> Option<Vec2> {
+    pub fn hit_point(&self) -> Option<V> {
         self.hit.map(|h| self.ray.at(h.t))
     }
 }
 
-/// A closest-point query's outcome on the structure and on brute force.
+/// A closest-point query's outcome on the structure and on brute force (in 2D by default).
 #[derive(Clone, Debug)]
-pub struct PointOutcome {
+pub struct PointOutcome<V: Vector = Vec2> {
     /// The query point.
-    pub point: Vec2,
+    pub point: V,
     /// How many neighbours were asked for.
     pub k: usize,
     /// The structure's `k` nearest, nearest first.
-    pub nearest: Vec<Nearest<Vec2>>,
+    pub nearest: Vec<Nearest<V>>,
     /// What it cost.
     pub cost: QueryCost,
     /// Brute force's answer.
-    pub brute_nearest: Vec<Nearest<Vec2>>,
+    pub brute_nearest: Vec<Nearest<V>>,
     /// What brute force cost.
     pub brute_cost: QueryCost,
     /// Everything the structure reported, in order.
-    pub events: Vec<Event<Vec2>>,
+    pub events: Vec<Event<V>>,
 }
 
-impl PointOutcome {
+impl<V: Vector> PointOutcome<V> {
     /// Finds the `k` primitives nearest `point` with `built` and with brute force.
-    pub fn run(built: &Built, brute: &BruteForce<Segment2>, point: Vec2, k: usize) -> Self {
+    pub fn run<P>(built: &Built<P>, brute: &BruteForce<P>, point: V, k: usize) -> Self
+    where
+        P: Primitive<Point = V>,
+        Sphere<V>: NodeVolume<Point = V>,
+        Aabb<V>: NodeVolume<Point = V>,
+        Obb<V>: NodeVolume<Point = V>,
+    {
         let mut recorder = Recorder::default();
         let traced = built.k_nearest(point, k, &mut recorder);
         let reference = brute.k_nearest_observed(point, k, &mut ());
@@ -181,6 +197,7 @@ mod tests {
     use super::*;
     use crate::presets::random_segments;
     use crate::structures::{BuildSettings, StructureKind};
+    use bvhlab::Ray2;
 
     #[test]
     fn marks_show_visits_and_the_tree_beats_brute_force() {
@@ -199,7 +216,7 @@ mod tests {
         );
         assert_eq!(marks.tested.len() as u64, outcome.cost.prim_tests);
         // An empty prefix marks nothing: playback starts from a clean picture.
-        assert_eq!(NodeMarks::from_events(&[], 3).nodes, vec![None; 3]);
+        assert_eq!(NodeMarks::from_events::<Vec2>(&[], 3).nodes, vec![None; 3]);
     }
 
     #[test]

@@ -6,24 +6,45 @@
 
 use bvhlab::glam::Vec2;
 use bvhlab::structure::RangeShape;
-use bvhlab::structure::bvh::SplitRecord;
-use bvhlab::{Event, Hit, Nearest, QueryCost, Ray2, Recorder, SpatialIndex, Sphere2, Traced};
+use bvhlab::structure::bvh::{NodeVolume, SplitRecord};
+use bvhlab::{
+    Aabb, BruteForce, Event, Hit, Nearest, Obb, Primitive, QueryCost, Ray, Recorder, SpatialIndex,
+    Sphere, Traced, Vector,
+};
 
 use crate::lane::Built2d;
 use crate::pseudocode::{Task, Variant};
-use crate::structures::BuildSettings;
+use crate::structures::{BuildSettings, Built};
+
+/// What a question is asked of: a built structure, brute force over the same primitives, and
+/// what the recording remembers about where they came from.
+#[derive(Clone, Copy)]
+pub struct Subject<'a, P: Primitive> {
+    /// The structure.
+    pub structure: &'a Built<P>,
+    /// The baseline over the same primitives.
+    pub brute: &'a BruteForce<P>,
+    /// The primitives (a build is recorded by building again, observed).
+    pub prims: &'a [P],
+    /// The settings the structure was built with.
+    pub settings: BuildSettings,
+    /// The scene revision it was built on.
+    pub revision: u64,
+    /// Its node count.
+    pub node_count: usize,
+}
 
 /// The question: everything a recording depends on besides the structure.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Question {
+pub struct Question<V: Vector = Vec2> {
     /// What to step through.
     pub task: Task,
     /// Which version of the algorithm.
     pub variant: Variant,
     /// The ray, for ray tasks.
-    pub ray: Option<Ray2>,
+    pub ray: Option<Ray<V>>,
     /// The query point, for point tasks.
-    pub point: Option<Vec2>,
+    pub point: Option<V>,
     /// How many nearest primitives.
     pub k: usize,
     /// The range query's radius around the point.
@@ -32,13 +53,13 @@ pub struct Question {
 
 /// A query's or build's answer, in a form the panels can print and compare.
 #[derive(Clone, Debug, PartialEq)]
-pub enum Answer {
+pub enum Answer<V: Vector = Vec2> {
     /// First or any hit.
     Hit(Option<Hit>),
     /// All hits, nearest first.
     Hits(Vec<Hit>),
     /// The k nearest, nearest first.
-    Nearest(Vec<Nearest<Vec2>>),
+    Nearest(Vec<Nearest<V>>),
     /// The primitives in the range, ascending.
     Indices(Vec<usize>),
     /// A build: how many nodes it made.
@@ -47,19 +68,19 @@ pub enum Answer {
 
 /// A recorded query or build.
 #[derive(Clone, Debug)]
-pub struct Recording {
+pub struct Recording<V: Vector = Vec2> {
     /// The question it answers.
-    pub question: Question,
+    pub question: Question<V>,
     /// The scene revision and settings it was recorded on.
     pub on: (u64, BuildSettings),
     /// Every event, in order.
-    pub events: Vec<Event<Vec2>>,
+    pub events: Vec<Event<V>>,
     /// The structure's answer.
-    pub answer: Answer,
+    pub answer: Answer<V>,
     /// What the structure's answer cost (the core's own count).
     pub cost: QueryCost,
     /// Brute force's answer (none for builds).
-    pub brute_answer: Option<Answer>,
+    pub brute_answer: Option<Answer<V>>,
     /// What brute force cost.
     pub brute_cost: QueryCost,
     /// A BVH build's split decisions, with their SAH cost curves.
@@ -70,26 +91,40 @@ pub struct Recording {
 }
 
 impl Recording {
+    /// Records `question` on the 2D lab's structure.
+    ///
+    /// # Errors
+    /// As [`Recording::record_on`].
+    pub fn record(built: &Built2d, question: Question) -> Result<Self, String> {
+        Self::record_on(built.subject(), question)
+    }
+}
+
+impl<V: Vector> Recording<V>
+where
+    Sphere<V>: NodeVolume<Point = V>,
+    Aabb<V>: NodeVolume<Point = V>,
+    Obb<V>: NodeVolume<Point = V>,
+{
     /// Records `question` on `built`.
     ///
     /// # Errors
     /// Why the question cannot be asked: no ray or point yet, or a variant that does not
     /// exist for this structure.
-    pub fn record(built: &Built2d, question: Question) -> Result<Self, String> {
+    pub fn record_on<P: Primitive<Point = V>>(
+        built: Subject<'_, P>,
+        question: Question<V>,
+    ) -> Result<Self, String> {
         let on = (built.revision, built.settings);
         if question.task == Task::Build {
             let mut recorder = Recorder::default();
-            let (_, splits) = crate::structures::Built::build_observed(
-                &built.prims.segments,
-                &built.settings,
-                &mut recorder,
-                true,
-            );
+            let (_, splits) =
+                Built::build_observed(built.prims, &built.settings, &mut recorder, true);
             return Ok(Self {
                 question,
                 on,
                 events: recorder.events,
-                answer: Answer::Nodes(built.outline.len()),
+                answer: Answer::Nodes(built.node_count),
                 cost: QueryCost::default(),
                 brute_answer: None,
                 brute_cost: QueryCost::default(),
@@ -98,15 +133,15 @@ impl Recording {
             });
         }
         let mut recorder = Recorder::default();
-        let traced = ask(built, &question, question.variant, &mut recorder)?;
-        let brute = ask_brute(built, &question)?;
+        let traced = ask(&built, &question, question.variant, &mut recorder)?;
+        let brute = ask_brute(&built, &question)?;
         let variant_costs = crate::pseudocode::variants(built.settings.kind, question.task)
             .into_iter()
             .filter_map(|v| {
                 let cost = if v == question.variant {
                     traced.cost
                 } else {
-                    ask(built, &question, v, &mut ()).ok()?.cost
+                    ask(&built, &question, v, &mut ()).ok()?.cost
                 };
                 Some((v, cost))
             })
@@ -126,7 +161,7 @@ impl Recording {
 
     /// The live ray answer, when this recording is the full first-hit query (so a drag
     /// runs the query once, not once for the panel and once for playback).
-    pub fn ray_outcome(&self) -> Option<crate::query::RayOutcome> {
+    pub fn ray_outcome(&self) -> Option<crate::query::RayOutcome<V>> {
         let q = &self.question;
         match (&self.answer, &self.brute_answer, q.ray) {
             (Answer::Hit(hit), Some(Answer::Hit(brute)), Some(ray))
@@ -146,7 +181,7 @@ impl Recording {
     }
 
     /// The live point answer, when this recording is the full k-nearest query.
-    pub fn point_outcome(&self) -> Option<crate::query::PointOutcome> {
+    pub fn point_outcome(&self) -> Option<crate::query::PointOutcome<V>> {
         let q = &self.question;
         match (&self.answer, &self.brute_answer, q.point) {
             (Answer::Nearest(nearest), Some(Answer::Nearest(brute)), Some(point))
@@ -180,39 +215,57 @@ impl Recording {
 }
 
 /// The ray and point of a question, or why they are missing.
-fn inputs(question: &Question) -> Result<(Option<Ray2>, Option<Vec2>), String> {
+fn inputs<V: Vector>(question: &Question<V>) -> Result<(Option<Ray<V>>, Option<V>), String> {
+    let in_3d = V::DIM == 3;
     match question.task {
-        Task::FirstHit | Task::AnyHit | Task::AllHits => question
-            .ray
-            .map(|r| (Some(r), None))
-            .ok_or_else(|| "Draw a ray first (Ray tool: drag on the canvas).".to_owned()),
-        Task::Nearest | Task::Range => question
-            .point
-            .map(|p| (None, Some(p)))
-            .ok_or_else(|| "Place a query point first (Point tool: click the canvas).".to_owned()),
+        Task::FirstHit | Task::AnyHit | Task::AllHits => {
+            question.ray.map(|r| (Some(r), None)).ok_or_else(|| {
+                if in_3d {
+                    "Cast a ray first (click the mesh, or set its origin and direction)."
+                } else {
+                    "Draw a ray first (Ray tool: drag on the canvas)."
+                }
+                .to_owned()
+            })
+        }
+        Task::Nearest | Task::Range => question.point.map(|p| (None, Some(p))).ok_or_else(|| {
+            if in_3d {
+                "Place a query point first (Point tool: click the mesh, or type it in)."
+            } else {
+                "Place a query point first (Point tool: click the canvas)."
+            }
+            .to_owned()
+        }),
         Task::Build => Ok((None, None)),
     }
 }
 
 /// The range query's shape: a disc of `radius` around the point.
-fn disc(point: Vec2, radius: f32) -> Result<RangeShape<Vec2>, String> {
+fn disc<V: Vector>(point: V, radius: f32) -> Result<RangeShape<V>, String> {
     if radius.is_finite() && radius >= 0.0 {
-        Ok(RangeShape::Ball(Sphere2::new(point, radius)))
+        Ok(RangeShape::Ball(Sphere::new(point, radius)))
     } else {
         Err(format!("The range radius {radius} is not a finite length."))
     }
 }
 
 /// Asks the structure, with the variant's algorithm.
-fn ask<O: bvhlab::Observer<Vec2>>(
-    built: &Built2d,
-    question: &Question,
+fn ask<P, O>(
+    built: &Subject<'_, P>,
+    question: &Question<P::Point>,
     variant: Variant,
     observer: &mut O,
-) -> Result<Traced<Answer>, String> {
+) -> Result<Traced<Answer<P::Point>>, String>
+where
+    P: Primitive,
+    O: bvhlab::Observer<P::Point>,
+    Sphere<P::Point>: NodeVolume<Point = P::Point>,
+    Aabb<P::Point>: NodeVolume<Point = P::Point>,
+    Obb<P::Point>: NodeVolume<Point = P::Point>,
+{
     let (ray, point) = inputs(question)?;
-    let s = &built.structure;
-    let wrap = |t: Traced<Answer>| Ok(t);
+    let s = built.structure;
+    let wrap = |t: Traced<Answer<P::Point>>| Ok(t);
     match (question.task, variant, ray, point) {
         (Task::FirstHit, Variant::Full, Some(r), _) => {
             wrap(map(s.ray_first_hit(&r, observer), Answer::Hit))
@@ -243,14 +296,14 @@ fn ask<O: bvhlab::Observer<Vec2>>(
     }
 }
 
-fn not_offered(built: &Built2d, task: Task, variant: Variant) -> String {
+fn not_offered<P: Primitive>(built: &Subject<'_, P>, task: Task, variant: Variant) -> String {
     format!(
         "The {variant:?} version of {task:?} exists only for BVHs, not for the {}.",
-        built.settings.kind.label()
+        built.settings.kind.label_in(P::Point::DIM)
     )
 }
 
-fn map<T>(traced: Traced<T>, f: impl FnOnce(T) -> Answer) -> Traced<Answer> {
+fn map<T, V: Vector>(traced: Traced<T>, f: impl FnOnce(T) -> Answer<V>) -> Traced<Answer<V>> {
     Traced {
         answer: f(traced.answer),
         cost: traced.cost,
@@ -259,9 +312,12 @@ fn map<T>(traced: Traced<T>, f: impl FnOnce(T) -> Answer) -> Traced<Answer> {
 
 /// Asks brute force the same question. The lecture's nearest variants find one primitive,
 /// so brute force is asked for one too.
-fn ask_brute(built: &Built2d, question: &Question) -> Result<Traced<Answer>, String> {
+fn ask_brute<P: Primitive>(
+    built: &Subject<'_, P>,
+    question: &Question<P::Point>,
+) -> Result<Traced<Answer<P::Point>>, String> {
     let (ray, point) = inputs(question)?;
-    let b = &built.brute;
+    let b = built.brute;
     let k = if question.variant == Variant::Full {
         question.k.max(1)
     } else {

@@ -1,7 +1,6 @@
 //! The structure the student picks, its build options, and one dispatch over the concrete
 //! core types so the rest of the lab handles "a structure" without knowing which.
 
-use bvhlab::glam::Vec2;
 use bvhlab::structure::bvh::{Bvh, NodeVolume, SphereFit, SplitRecord};
 use bvhlab::structure::kdtree::{AxisRule, KdBuilder};
 use bvhlab::structure::{
@@ -9,8 +8,8 @@ use bvhlab::structure::{
     SplitMethod,
 };
 use bvhlab::{
-    AabbTree2, BruteForce, Bsp2, Grid2, KdTree2, Nearest, ObbTree2, Observer, Outline, Quadtree2,
-    Ray2, Segment2, SpatialIndex, SphereTree2, Stats, Traced,
+    Aabb, BruteForce, BspTree, Grid, KdTree, Nearest, Obb, Observer, Orthtree, Outline, Primitive,
+    Ray, Segment2, SpatialIndex, Sphere, Stats, Traced, Vector,
 };
 
 /// The structures the lab offers, in the lecture's order.
@@ -28,7 +27,7 @@ pub enum StructureKind {
     Grid,
     /// A BSP tree (autopartition).
     Bsp,
-    /// A quadtree (the 2D octree).
+    /// A quadtree (in 3D: an octree).
     Quadtree,
     /// A k-d tree.
     KdTree,
@@ -47,7 +46,17 @@ impl StructureKind {
         Self::KdTree,
     ];
 
-    /// The lecture's name for it.
+    /// The lecture's name for it in `dim` dimensions (the orthtree is a quadtree in 2D and
+    /// an octree in 3D).
+    pub fn label_in(self, dim: usize) -> &'static str {
+        if self == Self::Quadtree && dim == 3 {
+            "octree"
+        } else {
+            self.label()
+        }
+    }
+
+    /// The lecture's name for it (in 2D).
     pub fn label(self) -> &'static str {
         match self {
             Self::BruteForce => "brute force (no structure)",
@@ -111,25 +120,25 @@ impl Default for BuildSettings {
     }
 }
 
-/// A built structure of any kind.
+/// A built structure of any kind, over 2D segments (the default) or triangles.
 #[derive(Clone, Debug)]
-pub enum Built {
+pub enum Built<P: Primitive = Segment2> {
     /// See [`StructureKind::BruteForce`].
-    BruteForce(BruteForce<Segment2>),
+    BruteForce(BruteForce<P>),
     /// See [`StructureKind::SphereTree`].
-    SphereTree(SphereTree2),
+    SphereTree(Bvh<Sphere<P::Point>, P>),
     /// See [`StructureKind::AabbTree`].
-    AabbTree(AabbTree2),
+    AabbTree(Bvh<Aabb<P::Point>, P>),
     /// See [`StructureKind::ObbTree`].
-    ObbTree(ObbTree2),
+    ObbTree(Bvh<Obb<P::Point>, P>),
     /// See [`StructureKind::Grid`].
-    Grid(Grid2),
+    Grid(Grid<P>),
     /// See [`StructureKind::Bsp`].
-    Bsp(Bsp2),
+    Bsp(BspTree<P>),
     /// See [`StructureKind::Quadtree`].
-    Quadtree(Quadtree2),
+    Quadtree(Orthtree<P>),
     /// See [`StructureKind::KdTree`].
-    KdTree(KdTree2),
+    KdTree(KdTree<P>),
 }
 
 /// Runs `$body` with `$s` bound to the concrete structure inside a [`Built`].
@@ -148,16 +157,21 @@ macro_rules! with_structure {
     };
 }
 
-impl Built {
+impl<P: Primitive> Built<P>
+where
+    Sphere<P::Point>: NodeVolume<Point = P::Point>,
+    Aabb<P::Point>: NodeVolume<Point = P::Point>,
+    Obb<P::Point>: NodeVolume<Point = P::Point>,
+{
     /// Builds the structure `settings` describe over `prims`.
-    pub fn build(prims: &[Segment2], settings: &BuildSettings) -> Self {
+    pub fn build(prims: &[P], settings: &BuildSettings) -> Self {
         Self::build_observed(prims, settings, &mut (), false).0
     }
 
     /// Builds the structure, reporting each step to `observer`; with `log`, also returns a
     /// BVH's split decisions with their SAH cost curves (other structures log none).
-    pub fn build_observed<O: Observer<Vec2>>(
-        prims: &[Segment2],
+    pub fn build_observed<O: Observer<P::Point>>(
+        prims: &[P],
         settings: &BuildSettings,
         observer: &mut O,
         log: bool,
@@ -176,25 +190,28 @@ impl Built {
             StructureKind::ObbTree => bvh_build(prims, &bvh, observer, log, Self::ObbTree),
             StructureKind::Grid => {
                 let n = settings.grid_cells;
+                let depth = if P::Point::DIM == 3 { n } else { 1 };
                 let options = GridOptions {
-                    resolution: (n > 0).then_some([n, n, 1]),
+                    resolution: (n > 0).then_some([n, n, depth]),
                     ..GridOptions::default()
                 };
-                tree(Self::Grid(Grid2::build_observed(prims, options, observer)))
+                tree(Self::Grid(Grid::build_observed(prims, options, observer)))
             }
             StructureKind::Bsp => {
                 let options = BspOptions {
                     leaf_size: settings.leaf_size.max(1),
                     ..BspOptions::default()
                 };
-                tree(Self::Bsp(Bsp2::build_observed(prims, &options, observer)))
+                tree(Self::Bsp(BspTree::build_observed(
+                    prims, &options, observer,
+                )))
             }
             StructureKind::Quadtree => {
                 let options = OrthtreeOptions {
                     max_leaf_size: settings.leaf_size.max(1),
                     max_depth: settings.quadtree_depth,
                 };
-                tree(Self::Quadtree(Quadtree2::build_observed(
+                tree(Self::Quadtree(Orthtree::build_observed(
                     prims, options, observer,
                 )))
             }
@@ -207,7 +224,7 @@ impl Built {
                 if !matches!(options.builder, KdBuilder::Sah(_)) {
                     options.leaf_size = settings.leaf_size.max(1);
                 }
-                tree(Self::KdTree(KdTree2::build_observed(
+                tree(Self::KdTree(KdTree::build_observed(
                     prims, &options, observer,
                 )))
             }
@@ -215,7 +232,7 @@ impl Built {
     }
 
     /// The nodes, for drawing, indexed by the node ids events report.
-    pub fn outline(&self) -> Vec<NodeOutline<Vec2>> {
+    pub fn outline(&self) -> Vec<NodeOutline<P::Point>> {
         with_structure!(self, s => s.outline())
     }
 
@@ -225,45 +242,45 @@ impl Built {
     }
 
     /// The first hit along `ray`, reporting each step to `observer`.
-    pub fn ray_first_hit<O: Observer<Vec2>>(
+    pub fn ray_first_hit<O: Observer<P::Point>>(
         &self,
-        ray: &Ray2,
+        ray: &Ray<P::Point>,
         observer: &mut O,
     ) -> Traced<Option<bvhlab::Hit>> {
         with_structure!(self, s => s.ray_first_hit_observed(ray, f32::INFINITY, observer))
     }
 
     /// Any hit along `ray` (the first one found, not necessarily the nearest).
-    pub fn ray_any_hit<O: Observer<Vec2>>(
+    pub fn ray_any_hit<O: Observer<P::Point>>(
         &self,
-        ray: &Ray2,
+        ray: &Ray<P::Point>,
         observer: &mut O,
     ) -> Traced<Option<bvhlab::Hit>> {
         with_structure!(self, s => s.ray_any_hit_observed(ray, f32::INFINITY, observer))
     }
 
     /// Every hit along `ray`, nearest first.
-    pub fn ray_all_hits<O: Observer<Vec2>>(
+    pub fn ray_all_hits<O: Observer<P::Point>>(
         &self,
-        ray: &Ray2,
+        ray: &Ray<P::Point>,
         observer: &mut O,
     ) -> Traced<Vec<bvhlab::Hit>> {
         with_structure!(self, s => s.ray_all_hits_observed(ray, f32::INFINITY, observer))
     }
 
     /// The primitives that share a point with `shape`, in increasing index order.
-    pub fn range<O: Observer<Vec2>>(
+    pub fn range<O: Observer<P::Point>>(
         &self,
-        shape: &RangeShape<Vec2>,
+        shape: &RangeShape<P::Point>,
         observer: &mut O,
     ) -> Traced<Vec<usize>> {
         with_structure!(self, s => s.range_observed(shape, observer))
     }
 
     /// The slides' recursive `intersect(bvNode, ray, t)`, for BVHs; `None` for the others.
-    pub fn lecture_intersect<O: Observer<Vec2>>(
+    pub fn lecture_intersect<O: Observer<P::Point>>(
         &self,
-        ray: &Ray2,
+        ray: &Ray<P::Point>,
         observer: &mut O,
     ) -> Option<Traced<Option<bvhlab::Hit>>> {
         let t = f32::INFINITY;
@@ -277,12 +294,12 @@ impl Built {
 
     /// The slides' `minDistance(bvNode, point, currentMin)`, for BVHs (with `pruned`, plus
     /// the pruning the slide leaves out); `None` for the others.
-    pub fn lecture_min_distance<O: Observer<Vec2>>(
+    pub fn lecture_min_distance<O: Observer<P::Point>>(
         &self,
-        point: Vec2,
+        point: P::Point,
         pruned: bool,
         observer: &mut O,
-    ) -> Option<Traced<Option<Nearest<Vec2>>>> {
+    ) -> Option<Traced<Option<Nearest<P::Point>>>> {
         macro_rules! either {
             ($s:expr) => {
                 if pruned {
@@ -301,28 +318,29 @@ impl Built {
     }
 
     /// The `k` nearest primitives to `point`, reporting each step to `observer`.
-    pub fn k_nearest<O: Observer<Vec2>>(
+    pub fn k_nearest<O: Observer<P::Point>>(
         &self,
-        point: Vec2,
+        point: P::Point,
         k: usize,
         observer: &mut O,
-    ) -> Traced<Vec<Nearest<Vec2>>> {
+    ) -> Traced<Vec<Nearest<P::Point>>> {
         with_structure!(self, s => s.k_nearest_observed(point, k, observer))
     }
 }
 
 /// Builds a BVH of any node volume, with its split log when asked (the log costs a vector
 /// per node, so plain builds skip it).
-fn bvh_build<B, O>(
-    prims: &[Segment2],
+fn bvh_build<P, B, O>(
+    prims: &[P],
     options: &BvhOptions,
     observer: &mut O,
     log: bool,
-    wrap: fn(Bvh<B, Segment2>) -> Built,
-) -> (Built, Vec<SplitRecord>)
+    wrap: fn(Bvh<B, P>) -> Built<P>,
+) -> (Built<P>, Vec<SplitRecord>)
 where
-    B: NodeVolume<Point = Vec2>,
-    O: Observer<Vec2>,
+    P: Primitive,
+    B: NodeVolume<Point = P::Point>,
+    O: Observer<P::Point>,
 {
     if log {
         let (tree, log) = Bvh::build_observed(prims, options, observer);
@@ -335,6 +353,8 @@ where
 #[cfg(test)]
 mod tests {
     use super::*;
+    use bvhlab::glam::Vec2;
+    use bvhlab::{Ray2, Segment2};
 
     #[test]
     fn every_kind_builds_and_answers_like_brute_force() {

@@ -2,7 +2,7 @@
 //! are measured against (§1: "we want to avoid testing every primitive").
 
 use bvhlab::Event;
-use bvhlab::glam::Vec2;
+use bvhlab::Vector;
 
 use super::listing::{Context, Listing, Step, listing};
 use super::{Algorithm, Pseudocode, Task};
@@ -57,7 +57,7 @@ static RANGE: Listing = listing!("Brute force: primitives in a range", NOTE, [
 ]);
 
 /// Brute force's queries emit only primitive tests and improvements of the best.
-fn classify(_: Context<'_>, event: &Event<Vec2>) -> Option<Step> {
+fn classify<V: Vector>(_: Context<'_, V>, event: &Event<V>) -> Option<Step> {
     match event {
         Event::PrimitiveTest { .. } => Some(Step::TestPrim),
         Event::NewBest { .. } => Some(Step::NewBest),
@@ -66,7 +66,7 @@ fn classify(_: Context<'_>, event: &Event<Vec2>) -> Option<Step> {
 }
 
 /// Brute force's query for `task`; `None` for the build (see [`super::build`]).
-pub(super) fn algorithm(task: Task) -> Option<Algorithm> {
+pub(super) fn algorithm<V: Vector>(task: Task) -> Option<Algorithm<V>> {
     let listing = match task {
         Task::FirstHit => &FIRST_HIT,
         Task::AnyHit => &ANY_HIT,

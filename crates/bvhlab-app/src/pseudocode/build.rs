@@ -8,7 +8,7 @@
 //! cell's finished list.
 
 use bvhlab::Event;
-use bvhlab::glam::Vec2;
+use bvhlab::Vector;
 
 use super::listing::{Context, Listing, Step, listing};
 use super::{Algorithm, Pseudocode};
@@ -139,7 +139,7 @@ static GRID: Listing = listing!(
 );
 
 /// Every builder's events name their line directly.
-fn classify(_: Context<'_>, event: &Event<Vec2>) -> Option<Step> {
+fn classify<V: Vector>(_: Context<'_, V>, event: &Event<V>) -> Option<Step> {
     Some(match event {
         Event::BuildNode { .. } => Step::BuildNode,
         Event::BuildSplit { .. } => Step::BuildSplit,
@@ -149,7 +149,7 @@ fn classify(_: Context<'_>, event: &Event<Vec2>) -> Option<Step> {
 }
 
 /// The builder of `kind`.
-pub(super) fn algorithm(kind: StructureKind) -> Algorithm {
+pub(super) fn algorithm<V: Vector>(kind: StructureKind) -> Algorithm<V> {
     let listing = match kind {
         StructureKind::BruteForce => &BRUTE_FORCE,
         StructureKind::SphereTree | StructureKind::AabbTree | StructureKind::ObbTree => &BVH,

@@ -6,7 +6,7 @@
 //! a node that cannot hold anything better than the best so far (see `bvh/traverse_ray.rs`,
 //! `traverse_nearest.rs` and `traverse_range.rs` in the core).
 
-use bvhlab::glam::Vec2;
+use bvhlab::Vector;
 use bvhlab::{Event, structure::PruneReason};
 
 use super::listing::{Classify, Context, Listing, ROOT, Step, listing};
@@ -146,7 +146,7 @@ static RANGE: Listing = listing!(
 /// The ray queries' events (`bvh/traverse_ray.rs`): a prune right after a node's test is the
 /// test's verdict (the root's, or a child's); any other prune happens when a node is popped,
 /// or, for the any-hit query, once a hit is found.
-fn classify_ray(cx: Context<'_>, event: &Event<Vec2>) -> Option<Step> {
+fn classify_ray<V: Vector>(cx: Context<'_, V>, event: &Event<V>) -> Option<Step> {
     Some(match *event {
         Event::RayBoundTest { node, .. } if node == ROOT => Step::TestRoot,
         Event::RayBoundTest { .. } => Step::TestChild,
@@ -172,7 +172,7 @@ fn classify_ray(cx: Context<'_>, event: &Event<Vec2>) -> Option<Step> {
 /// The nearest query's events (`bvh/traverse_nearest.rs`): a child's prune follows its
 /// distance test; the root is never refused at its test (the bound starts at infinity), so
 /// its prune, like any other, happens when it is popped.
-fn classify_nearest(cx: Context<'_>, event: &Event<Vec2>) -> Option<Step> {
+fn classify_nearest<V: Vector>(cx: Context<'_, V>, event: &Event<V>) -> Option<Step> {
     Some(match *event {
         Event::DistanceBoundTest { node, .. } if node == ROOT => Step::TestRoot,
         Event::DistanceBoundTest { .. } => Step::TestChild,
@@ -188,7 +188,7 @@ fn classify_nearest(cx: Context<'_>, event: &Event<Vec2>) -> Option<Step> {
 
 /// The range query's events (`bvh/traverse_range.rs`): volumes are tested silently, and
 /// only a miss is reported, as a prune.
-fn classify_range(_: Context<'_>, event: &Event<Vec2>) -> Option<Step> {
+fn classify_range<V: Vector>(_: Context<'_, V>, event: &Event<V>) -> Option<Step> {
     Some(match *event {
         Event::Prune { node, .. } if node == ROOT => Step::MissRoot,
         Event::Prune { .. } => Step::SkipChild,
@@ -200,8 +200,8 @@ fn classify_range(_: Context<'_>, event: &Event<Vec2>) -> Option<Step> {
 }
 
 /// The core's BVH query for `task`; `None` for the build (see [`super::build`]).
-pub(super) fn algorithm(task: Task) -> Option<Algorithm> {
-    let (listing, classify): (_, Classify) = match task {
+pub(super) fn algorithm<V: Vector>(task: Task) -> Option<Algorithm<V>> {
+    let (listing, classify): (_, Classify<V>) = match task {
         Task::FirstHit => (&FIRST_HIT, classify_ray),
         Task::AnyHit => (&ANY_HIT, classify_ray),
         Task::AllHits => (&ALL_HITS, classify_ray),

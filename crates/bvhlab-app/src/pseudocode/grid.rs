@@ -7,7 +7,7 @@
 //! tests them first, as the cell loop does.)
 
 use bvhlab::Event;
-use bvhlab::glam::Vec2;
+use bvhlab::Vector;
 
 use super::listing::{Classify, Context, Listing, Step, listing, primitive_step};
 use super::{Algorithm, Pseudocode, Task};
@@ -111,7 +111,7 @@ static RANGE: Listing = listing!(
 
 /// The ray walk's events: a cell entered, its primitives tested, and the prune of the first
 /// cell beyond the best hit (or `tMax`), which ends the walk.
-fn classify_ray(_: Context<'_>, event: &Event<Vec2>) -> Option<Step> {
+fn classify_ray<V: Vector>(_: Context<'_, V>, event: &Event<V>) -> Option<Step> {
     Some(match *event {
         Event::CellEnter { .. } => Step::Enter,
         Event::Prune { .. } => Step::Stop,
@@ -124,7 +124,7 @@ fn classify_ray(_: Context<'_>, event: &Event<Vec2>) -> Option<Step> {
 
 /// The rings' events: a non-empty cell is measured, then skipped or entered; an empty one is
 /// only entered.
-fn classify_nearest(_: Context<'_>, event: &Event<Vec2>) -> Option<Step> {
+fn classify_nearest<V: Vector>(_: Context<'_, V>, event: &Event<V>) -> Option<Step> {
     Some(match *event {
         Event::DistanceBoundTest { .. } => Step::TestChild,
         Event::Prune { .. } => Step::SkipChild,
@@ -136,7 +136,7 @@ fn classify_nearest(_: Context<'_>, event: &Event<Vec2>) -> Option<Step> {
 }
 
 /// The range query's events: a cell a ball misses is pruned, the others entered.
-fn classify_range(_: Context<'_>, event: &Event<Vec2>) -> Option<Step> {
+fn classify_range<V: Vector>(_: Context<'_, V>, event: &Event<V>) -> Option<Step> {
     Some(match *event {
         Event::Prune { .. } => Step::SkipChild,
         Event::EnterNode { .. } => Step::Enter,
@@ -146,8 +146,8 @@ fn classify_range(_: Context<'_>, event: &Event<Vec2>) -> Option<Step> {
 }
 
 /// The core's grid query for `task`; `None` for the build (see [`super::build`]).
-pub(super) fn algorithm(task: Task) -> Option<Algorithm> {
-    let (listing, classify): (_, Classify) = match task {
+pub(super) fn algorithm<V: Vector>(task: Task) -> Option<Algorithm<V>> {
+    let (listing, classify): (_, Classify<V>) = match task {
         Task::FirstHit => (&FIRST_HIT, classify_ray),
         Task::AnyHit => (&ANY_HIT, classify_ray),
         Task::AllHits => (&ALL_HITS, classify_ray),

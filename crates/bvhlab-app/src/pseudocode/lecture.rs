@@ -10,7 +10,7 @@
 //! call into the left child and rank 1 just before the call into the right child.
 
 use bvhlab::Event;
-use bvhlab::glam::Vec2;
+use bvhlab::Vector;
 
 use super::listing::{Context, Listing, Step, listing};
 use super::{Algorithm, Pseudocode, Task, Variant};
@@ -104,7 +104,7 @@ static MIN_DISTANCE_PRUNED: Listing = listing!(
 
 /// The recursions' events: each bound test and prune concerns the node of the current call,
 /// and the rank of a queued child says which call follows.
-fn classify(_: Context<'_>, event: &Event<Vec2>) -> Option<Step> {
+fn classify<V: Vector>(_: Context<'_, V>, event: &Event<V>) -> Option<Step> {
     Some(match *event {
         Event::EnterNode { .. } => Step::Enter,
         Event::RayBoundTest { .. } | Event::DistanceBoundTest { .. } => Step::TestChild,
@@ -119,7 +119,7 @@ fn classify(_: Context<'_>, event: &Event<Vec2>) -> Option<Step> {
 
 /// The slides' version of `task`: `intersect` for the first hit, `minDistance` (plain or
 /// pruned) for the nearest; `None` for every other task and for [`Variant::Full`].
-pub(super) fn algorithm(task: Task, variant: Variant) -> Option<Algorithm> {
+pub(super) fn algorithm<V: Vector>(task: Task, variant: Variant) -> Option<Algorithm<V>> {
     let listing = match (task, variant) {
         (Task::FirstHit, Variant::Lecture) => &INTERSECT,
         (Task::Nearest, Variant::Lecture) => &MIN_DISTANCE,

@@ -6,7 +6,7 @@
 //! a step, and the highlighted line is the listing's line for that step. Renumbering or
 //! rewording lines never breaks the mapping.
 
-use bvhlab::glam::Vec2;
+use bvhlab::Vector;
 use bvhlab::structure::PrimitiveResult;
 use bvhlab::{Event, NodeId};
 
@@ -109,29 +109,29 @@ pub(super) use listing;
 
 /// An algorithm's reading of its own events: the step `event` is, given the events before
 /// it; `None` for an event the algorithm does not emit.
-pub(super) type Classify = fn(Context<'_>, &Event<Vec2>) -> Option<Step>;
+pub(super) type Classify<V> = fn(Context<'_, V>, &Event<V>) -> Option<Step>;
 
 /// Reads an event stream for a classifier: the event at `step` and what came before it.
 #[derive(Clone, Copy)]
-pub(super) struct Context<'a> {
-    events: &'a [Event<Vec2>],
+pub(super) struct Context<'a, V: Vector> {
+    events: &'a [Event<V>],
     step: usize,
 }
 
-impl<'a> Context<'a> {
+impl<'a, V: Vector> Context<'a, V> {
     /// The context of `events[step]`, or `None` when there is no such event.
-    pub fn new(events: &'a [Event<Vec2>], step: usize) -> Option<(Self, &'a Event<Vec2>)> {
+    pub fn new(events: &'a [Event<V>], step: usize) -> Option<(Self, &'a Event<V>)> {
         let event = events.get(step)?;
         Some((Self { events, step }, event))
     }
 
     /// The event just before this one.
-    pub fn previous(self) -> Option<&'a Event<Vec2>> {
+    pub fn previous(self) -> Option<&'a Event<V>> {
         self.events[..self.step].last()
     }
 
     /// The events before this one, latest first.
-    pub fn before(self) -> impl Iterator<Item = &'a Event<Vec2>> {
+    pub fn before(self) -> impl Iterator<Item = &'a Event<V>> {
         self.events[..self.step].iter().rev()
     }
 

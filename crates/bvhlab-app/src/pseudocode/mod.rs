@@ -21,8 +21,8 @@ mod listing;
 mod plane;
 mod quadtree;
 
-use bvhlab::Event;
 use bvhlab::glam::Vec2;
+use bvhlab::{Event, Vector};
 
 use self::listing::{Classify, Context, Listing};
 use crate::structures::StructureKind;
@@ -81,13 +81,13 @@ pub struct Pseudocode {
 }
 
 /// An algorithm: its listing, and how it reads its own events.
-struct Algorithm {
+struct Algorithm<V: Vector> {
     listing: &'static Listing,
-    classify: Classify,
+    classify: Classify<V>,
 }
 
 /// The algorithm `kind` runs for `task`, in `variant`.
-fn algorithm(kind: StructureKind, task: Task, variant: Variant) -> Option<Algorithm> {
+fn algorithm<V: Vector>(kind: StructureKind, task: Task, variant: Variant) -> Option<Algorithm<V>> {
     if task == Task::Build {
         return (variant == Variant::Full).then(|| build::algorithm(kind));
     }
@@ -117,14 +117,14 @@ pub fn pseudocode(
     task: Task,
     variant: Variant,
 ) -> Option<&'static Pseudocode> {
-    algorithm(kind, task, variant).map(|a| &a.listing.code)
+    algorithm::<Vec2>(kind, task, variant).map(|a| &a.listing.code)
 }
 
 /// The variants that exist for `kind` and `task` ([`Variant::Full`] first).
 pub fn variants(kind: StructureKind, task: Task) -> Vec<Variant> {
     [Variant::Full, Variant::Lecture, Variant::LecturePruned]
         .into_iter()
-        .filter(|&v| algorithm(kind, task, v).is_some())
+        .filter(|&v| algorithm::<Vec2>(kind, task, v).is_some())
         .collect()
 }
 
@@ -132,11 +132,11 @@ pub fn variants(kind: StructureKind, task: Task) -> Vec<Variant> {
 /// events before it (some events mean different lines depending on what came just before,
 /// e.g. a `RayBoundTest` of the root and of a child). `None` only for an event the algorithm
 /// does not emit (or a `step` past the end, or a variant that does not exist).
-pub fn line_of(
+pub fn line_of<V: Vector>(
     kind: StructureKind,
     task: Task,
     variant: Variant,
-    events: &[Event<Vec2>],
+    events: &[Event<V>],
     step: usize,
 ) -> Option<usize> {
     let algorithm = algorithm(kind, task, variant)?;

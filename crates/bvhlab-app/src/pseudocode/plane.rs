@@ -7,7 +7,7 @@
 //! node's box is its cell; for a BSP tree, whose regions are convex polygons, it is the box of
 //! the node's primitives.
 
-use bvhlab::glam::Vec2;
+use bvhlab::Vector;
 use bvhlab::{Event, structure::PruneReason};
 
 use super::listing::{Classify, Context, Listing, ROOT, Step, listing, primitive_step};
@@ -158,7 +158,7 @@ static RANGE: Listing = listing!(
 /// The query ends right after a leaf: after its primitive tests, or right after entering it
 /// when it is empty (an inner node's entry is always followed by its plane crossing). The
 /// prunes of one ending follow each other, so a chain of them is read from its start.
-fn ends_query(cx: Context<'_>) -> bool {
+fn ends_query<V: Vector>(cx: Context<'_, V>) -> bool {
     let start = cx.before().find(|e| {
         !matches!(
             e,
@@ -182,7 +182,7 @@ fn ends_query(cx: Context<'_>) -> bool {
 /// The ray queries' events: the root box's test and miss; a child the ray does not reach is
 /// reported right after its parent's children are queued; other prunes happen when a region
 /// is popped or, once the answer is final, for everything left on the stack.
-fn classify_ray(first_hit: bool, cx: Context<'_>, event: &Event<Vec2>) -> Option<Step> {
+fn classify_ray<V: Vector>(first_hit: bool, cx: Context<'_, V>, event: &Event<V>) -> Option<Step> {
     Some(match *event {
         Event::RayBoundTest { .. } => Step::TestRoot,
         Event::Prune {
@@ -211,7 +211,7 @@ fn classify_ray(first_hit: bool, cx: Context<'_>, event: &Event<Vec2>) -> Option
 
 /// The nearest query's events: a child's prune follows its distance test right away; the
 /// root's test is followed by its pop.
-fn classify_nearest(cx: Context<'_>, event: &Event<Vec2>) -> Option<Step> {
+fn classify_nearest<V: Vector>(cx: Context<'_, V>, event: &Event<V>) -> Option<Step> {
     Some(match *event {
         Event::DistanceBoundTest { node, .. } if node == ROOT => Step::TestRoot,
         Event::DistanceBoundTest { .. } => Step::TestChild,
@@ -226,7 +226,7 @@ fn classify_nearest(cx: Context<'_>, event: &Event<Vec2>) -> Option<Step> {
 }
 
 /// The range query's events: boxes are tested silently, and only a miss is reported.
-fn classify_range(_: Context<'_>, event: &Event<Vec2>) -> Option<Step> {
+fn classify_range<V: Vector>(_: Context<'_, V>, event: &Event<V>) -> Option<Step> {
     Some(match *event {
         Event::Prune { node, .. } if node == ROOT => Step::MissRoot,
         Event::Prune { .. } => Step::SkipChild,
@@ -238,8 +238,8 @@ fn classify_range(_: Context<'_>, event: &Event<Vec2>) -> Option<Step> {
 }
 
 /// The core's k-d / BSP query for `task`; `None` for the build (see [`super::build`]).
-pub(super) fn algorithm(task: Task) -> Option<Algorithm> {
-    let (listing, classify): (_, Classify) = match task {
+pub(super) fn algorithm<V: Vector>(task: Task) -> Option<Algorithm<V>> {
+    let (listing, classify): (_, Classify<V>) = match task {
         Task::FirstHit => (&FIRST_HIT, |cx, e| classify_ray(true, cx, e)),
         Task::AnyHit => (&ANY_HIT, |cx, e| classify_ray(false, cx, e)),
         Task::AllHits => (&ALL_HITS, |cx, e| classify_ray(false, cx, e)),

@@ -6,7 +6,7 @@
 //! never queued. (Primitives with a non-finite coordinate sit in no cell; every query tests
 //! them first, as the leaf loop does.)
 
-use bvhlab::glam::Vec2;
+use bvhlab::Vector;
 use bvhlab::{Event, structure::PruneReason};
 
 use super::listing::{Classify, Context, Listing, ROOT, Step, listing, primitive_step};
@@ -149,7 +149,7 @@ static RANGE: Listing = listing!(
 
 /// The ray queries' events: every cell's test is followed at once by its miss; the prunes
 /// of cells beyond the best hit (or `tMax`) happen when they are popped.
-fn classify_ray(cx: Context<'_>, event: &Event<Vec2>) -> Option<Step> {
+fn classify_ray<V: Vector>(cx: Context<'_, V>, event: &Event<V>) -> Option<Step> {
     Some(match *event {
         Event::RayBoundTest { node, .. } if node == ROOT => Step::TestRoot,
         Event::RayBoundTest { .. } => Step::TestChild,
@@ -176,7 +176,7 @@ fn classify_ray(cx: Context<'_>, event: &Event<Vec2>) -> Option<Step> {
 /// The nearest query's events: the four children are measured first, then queued or pruned
 /// nearest first, so a child's prune is one whose distance was measured since the last cell
 /// was entered; any other prune is of a popped cell, and ends the search.
-fn classify_nearest(cx: Context<'_>, event: &Event<Vec2>) -> Option<Step> {
+fn classify_nearest<V: Vector>(cx: Context<'_, V>, event: &Event<V>) -> Option<Step> {
     Some(match *event {
         Event::DistanceBoundTest { node, .. } if node == ROOT => Step::TestRoot,
         Event::DistanceBoundTest { .. } => Step::TestChild,
@@ -192,7 +192,7 @@ fn classify_nearest(cx: Context<'_>, event: &Event<Vec2>) -> Option<Step> {
 
 /// The range query's events: a popped cell is tested silently and reported only when the
 /// region misses it; children are pushed without events.
-fn classify_range(_: Context<'_>, event: &Event<Vec2>) -> Option<Step> {
+fn classify_range<V: Vector>(_: Context<'_, V>, event: &Event<V>) -> Option<Step> {
     Some(match *event {
         Event::Prune { .. } => Step::SkipPopped,
         Event::EnterNode { .. } => Step::Enter,
@@ -202,8 +202,8 @@ fn classify_range(_: Context<'_>, event: &Event<Vec2>) -> Option<Step> {
 }
 
 /// The core's quadtree query for `task`; `None` for the build (see [`super::build`]).
-pub(super) fn algorithm(task: Task) -> Option<Algorithm> {
-    let (listing, classify): (_, Classify) = match task {
+pub(super) fn algorithm<V: Vector>(task: Task) -> Option<Algorithm<V>> {
+    let (listing, classify): (_, Classify<V>) = match task {
         Task::FirstHit => (&FIRST_HIT, classify_ray),
         Task::AnyHit => (&ANY_HIT, classify_ray),
         Task::AllHits => (&ALL_HITS, classify_ray),

@@ -18,7 +18,7 @@ fn all_algorithms() -> Vec<(StructureKind, Task, Variant)> {
     for kind in StructureKind::ALL {
         for task in Task::ALL {
             for variant in VARIANTS {
-                if algorithm(kind, task, variant).is_some() {
+                if algorithm::<Vec2>(kind, task, variant).is_some() {
                     out.push((kind, task, variant));
                 }
             }
@@ -30,7 +30,7 @@ fn all_algorithms() -> Vec<(StructureKind, Task, Variant)> {
 #[test]
 fn every_listing_names_each_step_once_and_fits_the_panel() {
     for (kind, task, variant) in all_algorithms() {
-        let Some(a) = algorithm(kind, task, variant) else {
+        let Some(a) = algorithm::<Vec2>(kind, task, variant) else {
             continue;
         };
         let code = &a.listing.code;
@@ -248,7 +248,7 @@ fn a_quadtree_nearest_tells_a_childs_prune_from_the_end_of_the_search() {
 
 #[test]
 fn events_an_algorithm_does_not_emit_have_no_line() {
-    let pair = Event::PairTest {
+    let pair = Event::<Vec2>::PairTest {
         a: 0,
         b: 1,
         overlap: true,
@@ -261,7 +261,7 @@ fn events_an_algorithm_does_not_emit_have_no_line() {
             "past the end"
         );
     }
-    let cross = [Event::PlaneCrossed {
+    let cross = [Event::<Vec2>::PlaneCrossed {
         node: NodeId(0),
         t: 1.0,
     }];

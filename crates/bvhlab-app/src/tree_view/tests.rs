@@ -149,7 +149,7 @@ fn an_empty_scene_is_laid_out_without_panicking() {
             kind,
             ..BuildSettings::default()
         };
-        let outline = Built::build(&[], &settings).outline();
+        let outline = Built::<bvhlab::Segment2>::build(&[], &settings).outline();
         let layout = Layout::new(&outline);
         assert_eq!(layout.pos.len(), outline.len(), "{kind:?}");
         assert_eq!(

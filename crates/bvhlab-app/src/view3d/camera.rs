@@ -278,12 +278,27 @@ mod tests {
         let size = Vec2::new(100.0, 100.0);
         for i in 0..8 {
             let corner = Vec3::new(
-                if i & 1 == 0 { bounds.min.x } else { bounds.max.x },
-                if i & 2 == 0 { bounds.min.y } else { bounds.max.y },
-                if i & 4 == 0 { bounds.min.z } else { bounds.max.z },
+                if i & 1 == 0 {
+                    bounds.min.x
+                } else {
+                    bounds.max.x
+                },
+                if i & 2 == 0 {
+                    bounds.min.y
+                } else {
+                    bounds.max.y
+                },
+                if i & 4 == 0 {
+                    bounds.min.z
+                } else {
+                    bounds.max.z
+                },
             );
             let p = camera.project(corner, size).expect("in front");
-            assert!((0.0..=100.0).contains(&p.x) && (0.0..=100.0).contains(&p.y), "{p}");
+            assert!(
+                (0.0..=100.0).contains(&p.x) && (0.0..=100.0).contains(&p.y),
+                "{p}"
+            );
         }
     }
 
@@ -295,7 +310,11 @@ mod tests {
         let forward = camera.basis().forward;
         for (d, want) in [(near, 0.0), (far, 1.0)] {
             let clip = m * (camera.eye() + forward * d).extend(1.0);
-            assert!((clip.z / clip.w - want).abs() < 1e-4, "{d}: {}", clip.z / clip.w);
+            assert!(
+                (clip.z / clip.w - want).abs() < 1e-4,
+                "{d}: {}",
+                clip.z / clip.w
+            );
         }
     }
 
