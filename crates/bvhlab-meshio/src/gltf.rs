@@ -18,6 +18,7 @@
 mod accessor;
 mod glb;
 
+use ::gltf::json::validation::Checked;
 use ::gltf::mesh::Mode;
 use ::gltf::{Document, Node, Primitive};
 use bvhlab::glam::DMat4;
@@ -59,6 +60,7 @@ pub(crate) fn read(
              read; export it without that extension"
         )));
     }
+    dangling_position(&root).map_or(Ok(()), |detail| Err(fault(detail)))?;
     let document = Document::from_json(root).map_err(|e| fault(validation(&e)))?;
     let buffers = Buffers::new(&document, bin);
     let mut scene = Scene {
@@ -104,6 +106,29 @@ pub(crate) fn read(
         ));
     }
     Ok(scene.geometry)
+}
+
+/// A primitive whose `POSITION` names an accessor the file does not have, said as a sentence.
+///
+/// Checked before `gltf` validates the document: its check of the positions' bounds looks
+/// the accessor up unchecked (gltf-json 1.4.1, `mesh.rs`), a panic on such a file.
+fn dangling_position(root: &::gltf::json::Root) -> Option<String> {
+    let position = Checked::Valid(::gltf::json::mesh::Semantic::Positions);
+    root.meshes.iter().enumerate().find_map(|(m, mesh)| {
+        mesh.primitives
+            .iter()
+            .enumerate()
+            .find_map(|(p, primitive)| {
+                let accessor = primitive.attributes.get(&position)?.value();
+                (accessor >= root.accessors.len()).then(|| {
+                    format!(
+                        "mesh {m} primitive {p}: POSITION names accessor {accessor}, but the file \
+                     has only {} accessors",
+                        root.accessors.len()
+                    )
+                })
+            })
+    })
 }
 
 /// `gltf`'s validation errors as one sentence.

@@ -16,6 +16,9 @@ pub(super) fn split(bytes: &[u8]) -> Result<(&[u8], Option<&[u8]>), String> {
             .get(at..at + 4)
             .map(|w| u32::from_le_bytes([w[0], w[1], w[2], w[3]]) as usize)
     };
+    if !bytes.starts_with(b"glTF") {
+        return Err("a GLB file starts with the bytes `glTF`, and this one does not".into());
+    }
     let (Some(version), Some(length)) = (word(4), word(8)) else {
         return Err(format!(
             "a GLB file starts with a 12-byte header, and this one has only {} bytes",
