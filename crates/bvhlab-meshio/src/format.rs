@@ -58,8 +58,17 @@ impl Format {
             .find(|format| extension.eq_ignore_ascii_case(format.extension()))
     }
 
-    /// The format the bytes themselves show, if they show one (see the module documentation
-    /// for the order of the tests).
+    /// The format the bytes themselves show, if they show one. The tests, in order:
+    ///
+    /// 1. GLB: the first four bytes are `glTF`.
+    /// 2. PLY: the first line is `ply`.
+    /// 3. Binary STL: the file has exactly 84 + 50·n bytes, n being the little-endian count
+    ///    at bytes 80 to 83. This comes before the ASCII test because many binary STL files
+    ///    start their free 80-byte header with `solid`, as ASCII STL files start.
+    /// 4. ASCII STL: the first word is `solid` and the first KiB has no NUL byte.
+    /// 5. glTF JSON: the first character (after white space) is `{`.
+    /// 6. OBJ: the first statement within 64 KiB, past blank and `#` lines, is an OBJ keyword
+    ///    (`v`, `f`, `o`, `g`, `mtllib`...), and that stretch has no NUL byte.
     pub fn from_content(bytes: &[u8]) -> Option<Self> {
         let text = trim_start(bytes);
         if bytes.starts_with(b"glTF") {

@@ -261,11 +261,14 @@ impl Data<'_> {
                     Ok(_) => self.line += 1,
                     Err(e) => return Err(Fault::Parse(format!("not text: {e}"))),
                 }
+                let parsed = parser.read_ascii_element(&line, def);
+                // `ply-rs-bw` reads only digits, so `nan` and `inf` fail as "not a number";
+                // say what they are.
                 let non_finite = |t: &str| t.parse::<f64>().is_ok_and(|v| !v.is_finite());
-                if line.split_ascii_whitespace().any(non_finite) {
+                if parsed.is_err() && line.split_ascii_whitespace().any(non_finite) {
                     return Err(Fault::NonFinite);
                 }
-                parser.read_ascii_element(&line, def)
+                parsed
             }
             Encoding::BinaryLittleEndian => parser.read_little_endian_element(&mut self.body, def),
             Encoding::BinaryBigEndian => parser.read_big_endian_element(&mut self.body, def),

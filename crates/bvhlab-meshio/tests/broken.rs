@@ -144,13 +144,16 @@ fn stl_with_nan_or_infinity() {
         &support::stl_binary(&triangles, b""),
         &["triangle 4", "not a finite number"],
     );
-    triangles[4].b.y = f32::INFINITY;
-    let text = String::from_utf8(support::stl_ascii(&[&triangles])).expect("text");
-    refused(
-        "inf.stl",
-        text.as_bytes(),
-        &["facet 4", "not a finite number"],
-    );
+    for bad in [f32::INFINITY, f32::NAN] {
+        triangles[4].b.y = bad;
+        let text = String::from_utf8(support::stl_ascii(&[&triangles])).expect("text");
+        assert!(text.contains(" inf ") || text.contains(" NaN "));
+        refused(
+            "bad.stl",
+            text.as_bytes(),
+            &["solid 0, facet 4", "not a finite number"],
+        );
+    }
 }
 
 #[test]
@@ -494,6 +497,19 @@ fn gltf_with_nan_and_with_a_transform_that_overflows() {
         error,
         LoadError::NonFinite {
             format: Format::Gltf,
+            ..
+        }
+    ));
+    let json = buffer.json(&meshes, r#"{"mesh":0}"#, r#"{"nodes":[0]}"#, None);
+    let error = refused(
+        "nan.glb",
+        &support::glb(&json, &buffer.bytes),
+        &["vertex 2 of mesh 0 primitive 0", "not a finite number"],
+    );
+    assert!(matches!(
+        error,
+        LoadError::NonFinite {
+            format: Format::Glb,
             ..
         }
     ));
