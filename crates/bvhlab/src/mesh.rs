@@ -1,6 +1,9 @@
 //! Triangle meshes from Wavefront OBJ files: the real scenes the lab's structures are built
 //! over (the Stanford bunny, the Utah teapot, ...).
 //!
+//! Readers of other formats, and generators of procedural meshes, hand their vertices and
+//! triangles to [`Mesh::from_indexed`], which checks them the same way.
+//!
 //! [`Mesh::from_obj`] reads vertex positions and faces, triangulates polygon faces by ear
 //! clipping, and refuses broken input with a [`MeshError`] that names the line, the face and
 //! the fault. Everything else in the file (normals, texture coordinates, groups, materials)
@@ -99,6 +102,61 @@ impl Mesh {
             indices,
             triangles,
             faces: obj.faces.len(),
+        })
+    }
+
+    /// A mesh from vertex positions and triangles given as index triples into them: what a
+    /// reader of another file format (PLY, STL, glTF) or a generator of procedural meshes
+    /// hands over once it has triangulated its faces.
+    ///
+    /// Each index triple counts as one face in [`Mesh::summary`]. Triangles keep their corner
+    /// order (their winding), and zero-area triangles are kept, as in [`Mesh::from_obj`].
+    /// Vertices that no triangle uses are allowed.
+    ///
+    /// # Errors
+    /// [`MeshError::NonFiniteVertex`] for the first vertex with a NaN or infinite coordinate,
+    /// and [`MeshError::IndexOutOfRange`] for the first triangle naming a vertex past the last
+    /// one, both counted from 0 as the slices count.
+    ///
+    /// ```
+    /// use bvhlab::glam::Vec3;
+    /// use bvhlab::mesh::{Mesh, MeshError};
+    ///
+    /// let square = vec![Vec3::ZERO, Vec3::X, Vec3::new(1.0, 1.0, 0.0), Vec3::Y];
+    /// let mesh = Mesh::from_indexed(square.clone(), vec![[0, 1, 2], [0, 2, 3]])?;
+    /// assert_eq!(mesh.triangles()[1].c, Vec3::Y);
+    ///
+    /// let broken = Mesh::from_indexed(square, vec![[0, 1, 4]]).unwrap_err();
+    /// assert_eq!(
+    ///     broken,
+    ///     MeshError::IndexOutOfRange { triangle: 0, index: 4, vertices: 4 }
+    /// );
+    /// # Ok::<(), MeshError>(())
+    /// ```
+    pub fn from_indexed(positions: Vec<Vec3>, indices: Vec<[u32; 3]>) -> Result<Self, MeshError> {
+        if let Some(vertex) = positions.iter().position(|p| !p.is_finite()) {
+            return Err(MeshError::NonFiniteVertex { vertex });
+        }
+        let vertices = positions.len();
+        let mut triangles = Vec::with_capacity(indices.len());
+        for (triangle, corners) in indices.iter().enumerate() {
+            let corner = |k: usize| {
+                positions
+                    .get(corners[k] as usize)
+                    .copied()
+                    .ok_or(MeshError::IndexOutOfRange {
+                        triangle,
+                        index: corners[k],
+                        vertices,
+                    })
+            };
+            triangles.push(Triangle3::new(corner(0)?, corner(1)?, corner(2)?));
+        }
+        Ok(Self {
+            positions,
+            faces: indices.len(),
+            indices,
+            triangles,
         })
     }
 

@@ -2,10 +2,13 @@
 
 use std::fmt;
 
-/// An OBJ file that [`Mesh::from_obj`](super::Mesh::from_obj) refuses, with where and why.
+/// An OBJ file that [`Mesh::from_obj`](super::Mesh::from_obj) refuses, or vertices and
+/// triangles that [`Mesh::from_indexed`](super::Mesh::from_indexed) refuses, with where and
+/// why.
 ///
-/// Lines and faces are counted from 1, as text editors and the OBJ format count them (a face
-/// is an `f` statement, before triangulation).
+/// In an OBJ file, lines and faces are counted from 1, as text editors and the OBJ format count
+/// them (a face is an `f` statement, before triangulation). Vertices and triangles given to
+/// `from_indexed` are counted from 0, as the slices that hold them count.
 #[derive(Debug, Clone, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum MeshError {
@@ -64,6 +67,20 @@ pub enum MeshError {
     TooManyVertices {
         /// The line of the first vertex past the limit.
         line: usize,
+    },
+    /// A vertex given to `from_indexed` with a NaN or infinite coordinate.
+    NonFiniteVertex {
+        /// The vertex, counted from 0.
+        vertex: usize,
+    },
+    /// A triangle given to `from_indexed` that names a vertex past the last one.
+    IndexOutOfRange {
+        /// The triangle, counted from 0.
+        triangle: usize,
+        /// The index it names.
+        index: u32,
+        /// How many vertices there are.
+        vertices: usize,
     },
 }
 
@@ -154,6 +171,25 @@ impl fmt::Display for MeshError {
                 "line {line}: more than {} vertices; split the mesh into smaller files",
                 u32::MAX
             ),
+            Self::NonFiniteVertex { vertex } => write!(
+                f,
+                "vertex {vertex} (counting from 0) has a coordinate that is not a finite \
+                 number (NaN or infinity)"
+            ),
+            Self::IndexOutOfRange {
+                triangle,
+                index,
+                vertices,
+            } => {
+                write!(
+                    f,
+                    "triangle {triangle} (counting from 0) names vertex {index}, but "
+                )?;
+                match vertices {
+                    0 => write!(f, "there are no vertices"),
+                    n => write!(f, "there are only {n} (0 to {})", n - 1),
+                }
+            }
         }
     }
 }
