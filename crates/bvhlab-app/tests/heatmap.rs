@@ -1,6 +1,10 @@
 //! The traversal-cost heat map: the CPU map is the core's per-ray cost, and the compute
 //! shader gives the same counts, hits and colours pixel for pixel (on lavapipe here; set
 //! `BVHLAB_REQUIRE_GPU=1` to fail instead of skipping when no adapter exists).
+#![expect(
+    clippy::print_stdout,
+    reason = "skips, agreements and measurements are reported to the person running the tests"
+)]
 
 use std::future::Future;
 use std::path::PathBuf;
@@ -11,7 +15,7 @@ use bvhlab::glam::Vec3;
 use bvhlab::prelude::*;
 use bvhlab::structure::QueryCost;
 use bvhlab::structure::bvh::{NodeVolume, PreparedRay};
-use bvhlab::{Mesh, Triangle3};
+use bvhlab::{Mesh, Ray3, Triangle3};
 use bvhlab_app::view3d::camera::{OrbitCamera, RayFrame};
 use bvhlab_app::view3d::heatmap::colormap::{self, RAMP};
 use bvhlab_app::view3d::heatmap::gpu::{colorize_shader_source, trace_shader_source};
@@ -290,7 +294,8 @@ fn compare(gpu: &Gpu, name: &str, tris: &[Triangle3], size: u32) {
                     top,
                 );
                 let gpu_image = map.read_image(&gpu.device, &gpu.queue).expect("image");
-                let cpu_image: Vec<[u8; 4]> = image.pixels.iter().map(|c| c.to_array()).collect();
+                let cpu_image: Vec<[u8; 4]> =
+                    image.pixels.iter().map(egui::Color32::to_array).collect();
                 assert!(
                     gpu_image == cpu_image,
                     "{name}, {view}, {metric:?}, {top:?}: colours differ"
@@ -336,4 +341,661 @@ fn gpu_equals_cpu_on_the_shared_meshes() {
             compare(&gpu, name, &tris, 64);
         }
     }
+}
+
+// ---------- the exact arithmetic, operation by operation ----------
+
+/// `Params` with only what the helper functions read: +∞, GROW and the hidden zero.
+fn test_params() -> [u32; 32] {
+    let mut words = [0u32; 32];
+    words[28] = f32::INFINITY.to_bits();
+    words[29] = bvhlab::structure::bvh::volume::GROW.to_bits();
+    words
+}
+
+/// A test kernel appended to the tracing shader, run on `input`, returning `out_words` u32
+/// per input element.
+fn run_kernel(
+    gpu: &Gpu,
+    kernel: &str,
+    entry: &str,
+    input: &[[f32; 4]],
+    out_words: usize,
+) -> Vec<u32> {
+    let source = format!("{}\n{kernel}", trace_shader_source());
+    let module = gpu
+        .device
+        .create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some(entry),
+            source: wgpu::ShaderSource::Wgsl(source.into()),
+        });
+    let pipeline = gpu
+        .device
+        .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some(entry),
+            layout: None,
+            module: &module,
+            entry_point: Some(entry),
+            compilation_options: wgpu::PipelineCompilationOptions::default(),
+            cache: None,
+        });
+    let init = |contents: &[u8], usage| {
+        gpu.device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: None,
+                contents,
+                usage,
+            })
+    };
+    let params = init(
+        bytemuck::cast_slice(&test_params()),
+        wgpu::BufferUsages::UNIFORM,
+    );
+    let input_buffer = init(bytemuck::cast_slice(input), wgpu::BufferUsages::STORAGE);
+    let size = (input.len() * out_words * 4) as u64;
+    let output = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+        label: None,
+        size,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+        mapped_at_creation: false,
+    });
+    let staging = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+        label: None,
+        size,
+        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    let group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: None,
+        layout: &pipeline.get_bind_group_layout(0),
+        entries: &[
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: params.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 10,
+                resource: input_buffer.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 11,
+                resource: output.as_entire_binding(),
+            },
+        ],
+    });
+    let mut encoder = gpu
+        .device
+        .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+    {
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor::default());
+        pass.set_pipeline(&pipeline);
+        pass.set_bind_group(0, &group, &[]);
+        pass.dispatch_workgroups(input.len().div_ceil(64) as u32, 1, 1);
+    }
+    encoder.copy_buffer_to_buffer(&output, 0, &staging, 0, size);
+    gpu.queue.submit([encoder.finish()]);
+    staging.map_async(wgpu::MapMode::Read, .., |_| {});
+    gpu.device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .expect("poll");
+    bytemuck::cast_slice(&staging.get_mapped_range(..).expect("mapped")).to_vec()
+}
+
+/// A small deterministic generator (xorshift64).
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        self.0
+    }
+    /// In [0, 1).
+    fn unit(&mut self) -> f32 {
+        (self.next() >> 40) as f32 / (1u64 << 24) as f32
+    }
+    /// A random sign and significand at a random exponent in `[-spread, spread)`.
+    fn scaled(&mut self, spread: i32) -> f32 {
+        let e = (self.next() % (2 * spread as u64)) as i32 - spread;
+        let s = if self.next() & 1 == 0 { 1.0 } else { -1.0 };
+        s * (1.0 + self.unit()) * 2f32.powi(e)
+    }
+}
+
+const EXACT_KERNEL: &str = r"
+@group(0) @binding(10) var<storage, read> cases: array<vec4<f32>>;
+@group(0) @binding(11) var<storage, read_write> results: array<vec4<u32>>;
+
+// IEEE binary64 bits (high word, low word); zero as +0.
+fn f64_bits(x: F64) -> vec2<u32> {
+    if f64_is_zero(x) {
+        return vec2<u32>(0u, 0u);
+    }
+    let hi = select(0u, 0x80000000u, x.neg) | (u32(x.e + 1023) << 20u) | ((x.m.x >> 11u) & 0xfffffu);
+    return vec2<u32>(hi, (x.m.y >> 11u) | (x.m.x << 21u));
+}
+
+@compute @workgroup_size(64)
+fn exact_ops(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let i = gid.x;
+    if i >= arrayLength(&cases) {
+        return;
+    }
+    _ = params.zero;
+    let v = cases[i];
+    let a = f64_from_f32(v.x);
+    let b = f64_from_f32(v.y);
+    let c = f64_from_f32(v.z);
+    let d = f64_from_f32(v.w);
+    let e = f64_sub(f64_mul(a, b), f64_mul(c, d));
+    let s = f64_add(f64_mul(e, c), f64_mul(a, d));
+    var q = f64_zero();
+    if !f64_is_zero(e) {
+        q = f64_div(s, e);
+    }
+    let t = f64_to_f32(q);
+    let ab = f64_to_f32(f64_mul(a, b));
+    let r = f32_div(v.x, v.y);
+    results[3u * i] = vec4<u32>(f64_bits(e), f64_bits(s));
+    results[3u * i + 1u] = vec4<u32>(f64_bits(q), t.bits, select(0u, 1u, t.finite));
+    results[3u * i + 2u] = vec4<u32>(r.bits, select(0u, 1u, r.finite), ab.bits, select(0u, 1u, ab.finite));
+}
+";
+
+/// Bits of an f64 with zero as +0 (the soft-float keeps no sign on zero).
+fn bits64(x: f64) -> [u32; 2] {
+    let b = if x == 0.0 { 0 } else { x.to_bits() };
+    [(b >> 32) as u32, b as u32]
+}
+
+fn bits32(x: f32) -> u32 {
+    if x == 0.0 { 0 } else { x.to_bits() }
+}
+
+/// Operands: random scales, near-cancelling products (a·b ≈ c·d), exact ties, and scales
+/// whose products round to f32 subnormals, zero or infinity.
+fn exact_cases(rng: &mut Rng) -> Vec<[f32; 4]> {
+    let mut cases = Vec::new();
+    for k in 0..20_000 {
+        let (a, b) = (rng.scaled(20), rng.scaled(20));
+        let case = match k % 5 {
+            0 => [a, b, rng.scaled(20), rng.scaled(20)],
+            1 => {
+                let f = 1.0 + (rng.next() % 8) as f32 * f32::EPSILON;
+                [a, b, a * f, b / f]
+            }
+            2 => [a, b, b, a],
+            3 => [
+                a * 2f32.powi(-55),
+                b * 2f32.powi(-55),
+                rng.scaled(4),
+                rng.scaled(4),
+            ],
+            _ => [
+                a * 2f32.powi(50),
+                b * 2f32.powi(50),
+                rng.scaled(30),
+                rng.scaled(30),
+            ],
+        };
+        cases.push(case);
+    }
+    cases
+}
+
+#[test]
+fn the_shader_arithmetic_rounds_as_ieee_f64_and_f32_do() {
+    let Some(gpu) = gpu("the_shader_arithmetic_rounds_as_ieee_f64_and_f32_do") else {
+        return;
+    };
+    let cases = exact_cases(&mut Rng(0x9e37_79b9_7f4a_7c15));
+    let out = run_kernel(&gpu, EXACT_KERNEL, "exact_ops", &cases, 12);
+    let mut wrong = Vec::new();
+    for (case, got) in cases.iter().zip(out.chunks(12)) {
+        let [a, b, c, d] = case.map(f64::from);
+        let e = a * b - c * d;
+        let s = e * c + a * d;
+        let q = if e == 0.0 { 0.0 } else { s / e };
+        let t = q as f32;
+        let r = case[0] / case[1];
+        let ab = (a * b) as f32;
+        let want = [
+            bits64(e)[0],
+            bits64(e)[1],
+            bits64(s)[0],
+            bits64(s)[1],
+            bits64(q)[0],
+            bits64(q)[1],
+            bits32(t),
+            u32::from(t.is_finite()),
+            bits32(r),
+            u32::from(r.is_finite()),
+            bits32(ab),
+            u32::from(ab.is_finite()),
+        ];
+        if got != want {
+            wrong.push(format!("{case:?}: shader {got:x?}, IEEE {want:x?}"));
+        }
+    }
+    assert!(
+        wrong.is_empty(),
+        "{} of {} cases differ: {:?}",
+        wrong.len(),
+        cases.len(),
+        &wrong[..wrong.len().min(3)]
+    );
+    let subnormal = cases
+        .iter()
+        .filter(|c| {
+            let x = (f64::from(c[0]) * f64::from(c[1])) as f32;
+            x != 0.0 && !x.is_normal()
+        })
+        .count();
+    let overflow = cases
+        .iter()
+        .filter(|c| ((f64::from(c[0]) * f64::from(c[1])) as f32).is_infinite())
+        .count();
+    assert!(
+        subnormal > 100 && overflow > 100,
+        "{subnormal} subnormal, {overflow} overflowing"
+    );
+}
+
+const RAY_KERNEL: &str = r"
+@group(0) @binding(10) var<storage, read> cases: array<vec4<f32>>;
+@group(0) @binding(11) var<storage, read_write> results: array<vec4<u32>>;
+
+@compute @workgroup_size(64)
+fn ray_cases(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let i = gid.x;
+    if i >= arrayLength(&cases) / 9u {
+        return;
+    }
+    let k = 9u * i;
+    let r = prepare_ray(cases[k].xyz, cases[k + 2u].xyz, cases[k + 3u].xyz, cases[k + 1u].xyz);
+    let flags = select(0u, 1u, cases[k + 4u].w != 0.0);
+    let tri = Tri(cases[k + 4u].xyz, 0u, cases[k + 5u].xyz, flags, cases[k + 6u].xyz, 0u);
+    let h = ray_triangle(r, tri);
+    let t = box_entry(r, cases[k + 7u].xyz, cases[k + 8u].xyz);
+    results[i] = vec4<u32>(select(0u, 1u, h.hit), bitcast<u32>(h.t), bitcast<u32>(t), 0u);
+}
+";
+
+/// A ray, a triangle and a box to test it against.
+struct RayCase {
+    origin: Vec3,
+    dir: Vec3,
+    tri: Triangle3,
+    bounds: Aabb3,
+}
+
+/// Random rays aimed at random triangles; rays through the vertices and edges of a dyadic
+/// grid (exactly zero edge functions); directions with zero components, of either sign;
+/// boxes whose planes hold the ray's slack-moved origin (the slab test's 0 · ∞); rays in the
+/// triangle's plane; degenerate triangles.
+fn ray_cases(rng: &mut Rng) -> Vec<RayCase> {
+    let mut cases = Vec::new();
+    let v = |rng: &mut Rng, r: f32| {
+        Vec3::new(rng.unit(), rng.unit(), rng.unit()) * 2.0 * r - Vec3::splat(r)
+    };
+    for k in 0..6000 {
+        let tri = Triangle3::new(v(rng, 1.0), v(rng, 1.0), v(rng, 1.0));
+        let origin = v(rng, 3.0);
+        let (w1, w2) = (rng.unit(), rng.unit());
+        let aim = tri.a + (tri.b - tri.a) * w1 + (tri.c - tri.a) * (w2 * (1.0 - w1));
+        let mut case = RayCase {
+            origin,
+            dir: aim - origin,
+            tri,
+            bounds: tri.bounds(),
+        };
+        match k % 6 {
+            1 => {
+                // A dyadic grid cell, hit through a vertex, an edge midpoint or its inside.
+                let q = |rng: &mut Rng| (rng.next() % 9) as f32 * 0.25 - 1.0;
+                let a = Vec3::new(q(rng), q(rng), 0.0);
+                let tri = Triangle3::new(a, a + Vec3::X * 0.5, a + Vec3::Y * 0.5);
+                let targets = [
+                    tri.a,
+                    tri.b,
+                    (tri.a + tri.b) * 0.5,
+                    (tri.b + tri.c) * 0.5,
+                    tri.a + Vec3::new(0.125, 0.125, 0.0),
+                ];
+                let aim = targets[(rng.next() % 5) as usize];
+                let origin = Vec3::new(q(rng), q(rng), 1.0 + (rng.next() % 4) as f32);
+                case = RayCase {
+                    origin,
+                    dir: aim - origin,
+                    tri,
+                    bounds: tri.bounds(),
+                };
+            }
+            2 => {
+                // Zero components, of either sign.
+                for i in 0..3 {
+                    if rng.next().is_multiple_of(2) {
+                        case.dir[i] = if rng.next().is_multiple_of(2) {
+                            0.0
+                        } else {
+                            -0.0
+                        };
+                    }
+                }
+                if case.dir == Vec3::ZERO {
+                    case.dir.z = 1.0;
+                }
+            }
+            3 => {
+                // A box with a plane through the slack-moved origin on a flat axis.
+                case.dir.x = if rng.next().is_multiple_of(2) {
+                    0.0
+                } else {
+                    -0.0
+                };
+                let (up, down) = slack_origins(case.origin);
+                case.bounds.min.x = if rng.next().is_multiple_of(2) {
+                    up.x
+                } else {
+                    down.x
+                };
+                case.bounds.max.x = case.bounds.min.x.max(case.bounds.max.x);
+                if rng.next().is_multiple_of(2) {
+                    case.bounds.max.x = case.bounds.min.x;
+                }
+            }
+            4 => {
+                // In the plane of an axis-aligned triangle.
+                case.tri = Triangle3::new(
+                    Vec3::new(-1.0, -1.0, 0.5),
+                    Vec3::new(1.0, -1.0, 0.5),
+                    Vec3::new(0.0, 1.0, 0.5),
+                );
+                case.origin.z = 0.5;
+                case.dir.z = 0.0;
+                case.bounds = case.tri.bounds();
+            }
+            5 if k % 12 == 5 => {
+                case.tri = Triangle3::new(tri.a, tri.b, tri.a + (tri.b - tri.a) * 2.0);
+            }
+            _ => {}
+        }
+        if case.dir != Vec3::ZERO {
+            cases.push(case);
+        }
+    }
+    cases
+}
+
+/// The origin moved up and down by the query's slack, from the core's own `PreparedRay`.
+fn slack_origins(origin: Vec3) -> (Vec3, Vec3) {
+    let up = PreparedRay::new(&Ray3::new(origin, Vec3::ONE).expect("ray"));
+    let down = PreparedRay::new(&Ray3::new(origin, -Vec3::ONE).expect("ray"));
+    (up.origin_near, down.origin_near)
+}
+
+#[test]
+fn the_shader_triangle_and_slab_tests_are_the_cores() {
+    let Some(gpu) = gpu("the_shader_triangle_and_slab_tests_are_the_cores") else {
+        return;
+    };
+    let cases = ray_cases(&mut Rng(0x2545_f491_4f6c_dd1d));
+    let input: Vec<[f32; 4]> = cases
+        .iter()
+        .flat_map(|c| {
+            let (up, down) = slack_origins(c.origin);
+            let flag = if c.tri.is_degenerate() { 1.0 } else { 0.0 };
+            [
+                c.origin.extend(0.0),
+                c.dir.extend(0.0),
+                up.extend(0.0),
+                down.extend(0.0),
+                c.tri.a.extend(flag),
+                c.tri.b.extend(0.0),
+                c.tri.c.extend(0.0),
+                c.bounds.min.extend(0.0),
+                c.bounds.max.extend(0.0),
+            ]
+            .map(|v| v.to_array())
+        })
+        .collect();
+    let out = run_kernel(&gpu, RAY_KERNEL, "ray_cases", &input, 4);
+    let (mut wrong, mut hits, mut box_hits, mut flat_hits) = (Vec::new(), 0, 0, 0);
+    for (c, got) in cases.iter().zip(out.chunks(4)) {
+        let ray = Ray3::new(c.origin, c.dir).expect("valid ray");
+        let hit = c.tri.ray_hit(&ray);
+        let entry = c.bounds.ray_entry(&PreparedRay::new(&ray));
+        let got_hit = (got[0] == 1).then(|| f32::from_bits(got[1]));
+        let want_entry = entry.map_or(-1.0f32, |(t, _)| t);
+        if got_hit != hit || got[2] != want_entry.to_bits() {
+            wrong.push(format!(
+                "{:?} {:?} {:?} {:?}: shader {got:x?}, core {hit:?} {entry:?}",
+                c.origin, c.dir, c.tri, c.bounds
+            ));
+        }
+        hits += usize::from(hit.is_some());
+        box_hits += usize::from(entry.is_some());
+        flat_hits += usize::from(entry.is_some() && c.dir.to_array().contains(&0.0));
+    }
+    assert!(
+        wrong.is_empty(),
+        "{} of {} differ: {:#?}",
+        wrong.len(),
+        cases.len(),
+        &wrong[..wrong.len().min(3)]
+    );
+    assert!(
+        hits > cases.len() / 3 && box_hits > cases.len() / 2 && flat_hits > 200,
+        "{hits} hits, {box_hits} box hits, {flat_hits} with zero components"
+    );
+}
+
+// ---------- the CPU map, the colour scale, the shaders' validity ----------
+
+/// What the CPU map asks of a structure.
+type CostOf<'a> = dyn FnMut(&Ray3) -> QueryCost + 'a;
+
+#[test]
+fn the_cpu_map_is_the_cores_cost_of_every_pixel_for_any_structure() {
+    let tris = procedural_mesh();
+    let aabb = AabbTree3::build(&tris);
+    let spheres = SphereTree3::build(&tris);
+    let frame = OrbitCamera::framing(&bounds(&tris)).ray_frame(41, 29);
+    for metric in [Metric::Nodes, Metric::PrimitiveTests] {
+        let mut cost_of_aabb =
+            |r: &Ray3| aabb.ray_first_hit_observed(r, f32::INFINITY, &mut ()).cost;
+        let mut cost_of_spheres = |r: &Ray3| {
+            spheres
+                .ray_first_hit_observed(r, f32::INFINITY, &mut ())
+                .cost
+        };
+        let structures: [(&str, &mut CostOf); 2] = [
+            ("AABB tree", &mut cost_of_aabb),
+            ("sphere tree", &mut cost_of_spheres),
+        ];
+        for (name, cost_of) in structures {
+            let mut map = CpuHeatMap::new(frame, metric);
+            let mut last = map.fraction();
+            assert_eq!(last, 0.0);
+            while !map.is_done() {
+                map.step(cost_of, 37);
+                assert!(map.fraction() > last, "progress on every step");
+                last = map.fraction();
+                // Pixels not done yet are transparent; done ones have the scale's colour.
+                let image = map.image(None);
+                let done = (last * (41.0 * 29.0)).round() as usize;
+                assert!(
+                    image.pixels[done..]
+                        .iter()
+                        .all(|c| *c == egui::Color32::TRANSPARENT)
+                );
+            }
+            assert_eq!(last, 1.0);
+            let mut want = Vec::new();
+            for y in 0..frame.height {
+                for x in 0..frame.width {
+                    let dir = frame.corner
+                        + frame.step_x * (x as f32 + 0.5)
+                        + frame.step_y * (y as f32 + 0.5);
+                    let ray = Ray3::new(frame.origin, dir).expect("ray");
+                    let cost = cost_of(&ray);
+                    want.push(match metric {
+                        Metric::Nodes => cost.nodes_visited,
+                        Metric::PrimitiveTests => cost.prim_tests,
+                    } as u32);
+                }
+            }
+            assert_eq!(map.counts(), want, "{name}, {metric:?}");
+            let top = *want.iter().max().expect("pixels");
+            assert!(top > 1, "{name}: the scene costs something");
+            assert_eq!(map.max_count(), top);
+            let image = map.image(None);
+            for (pixel, &count) in image.pixels.iter().zip(&want) {
+                let [r, g, b] = colormap::colour(count, top);
+                assert_eq!(*pixel, egui::Color32::from_rgb(r, g, b));
+            }
+        }
+    }
+}
+
+#[test]
+fn the_colour_scale_passes_its_control_points_and_brightens_with_the_count() {
+    let top = 9 * 40;
+    for (k, point) in RAMP.iter().enumerate() {
+        assert_eq!(
+            colormap::colour(k as u32 * 40, top),
+            *point,
+            "control point {k}"
+        );
+    }
+    assert_eq!(
+        colormap::colour(top * 3, top),
+        RAMP[9],
+        "above the top: the top colour"
+    );
+    assert_eq!(
+        colormap::colour(5, 0),
+        RAMP[0],
+        "an empty scale: the bottom colour"
+    );
+    let luma =
+        |[r, g, b]: [u8; 3]| 0.2126 * f32::from(r) + 0.7152 * f32::from(g) + 0.0722 * f32::from(b);
+    let mut last = -1.0;
+    for count in 0..=1000 {
+        let l = luma(colormap::colour(count, 1000));
+        assert!(
+            l >= last - 0.5,
+            "lightness falls at {count}: {l} after {last}"
+        );
+        last = l;
+    }
+    assert!(luma(RAMP[9]) - luma(RAMP[0]) > 150.0);
+}
+
+fn validate_wgsl(name: &str, source: &str) {
+    let module = naga::front::wgsl::parse_str(source)
+        .unwrap_or_else(|e| panic!("{name}: {}", e.emit_to_string(source)));
+    naga::valid::Validator::new(
+        naga::valid::ValidationFlags::all(),
+        naga::valid::Capabilities::default(),
+    )
+    .validate(&module)
+    .unwrap_or_else(|e| panic!("{name}: {e:?}"));
+}
+
+#[test]
+fn both_shaders_are_valid_wgsl() {
+    validate_wgsl("trace", &trace_shader_source());
+    validate_wgsl("colorize", &colorize_shader_source());
+}
+
+#[test]
+fn a_tree_too_large_for_the_device_is_refused_with_a_clear_error() {
+    let Some(gpu) = gpu("a_tree_too_large_for_the_device_is_refused_with_a_clear_error") else {
+        return;
+    };
+    let mut map = GpuHeatMap::new(&gpu.device);
+    let frame = OrbitCamera::default().ray_frame(8, 8);
+    let mut encoder = gpu
+        .device
+        .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+    let before = map.dispatch(
+        &gpu.device,
+        &gpu.queue,
+        &mut encoder,
+        &frame,
+        Metric::Nodes,
+        None,
+    );
+    assert_eq!(
+        before,
+        Err(bvhlab_app::view3d::heatmap::HeatMapError::NoTree)
+    );
+    // 48 bytes per triangle: just over the binding limit.
+    let limit = gpu.device.limits().max_storage_buffer_binding_size;
+    let count = (limit / 48 + 1) as usize;
+    let tri = Triangle3::new(Vec3::ZERO, Vec3::X, Vec3::Y);
+    let tree = AabbTree3::build(&vec![tri; count]);
+    let error = map.upload(&gpu.device, &tree).expect_err("too big");
+    assert!(error.to_string().contains("triangles"), "{error}");
+}
+
+// ---------- measurements and the picture (cargo test -- --ignored --nocapture) ----------
+
+#[test]
+#[ignore = "a measurement: run with --ignored --nocapture"]
+fn measure_the_bunny_and_write_its_picture() {
+    let Some(tris) = shared_mesh("stanford-bunny.obj") else {
+        return;
+    };
+    let tree = AabbTree3::build(&tris);
+    let frame = OrbitCamera::framing(&bounds(&tris)).ray_frame(640, 480);
+    for metric in [Metric::Nodes, Metric::PrimitiveTests] {
+        let mut map = CpuHeatMap::new(frame, metric);
+        let start = std::time::Instant::now();
+        map.step(
+            &mut |r| tree.ray_first_hit_observed(r, f32::INFINITY, &mut ()).cost,
+            usize::MAX,
+        );
+        let seconds = start.elapsed().as_secs_f64();
+        println!(
+            "CPU, {metric:?}: {} rays in {seconds:.3} s = {:.0} rays/s (one thread), largest count {}",
+            map.counts().len(),
+            map.counts().len() as f64 / seconds,
+            map.max_count()
+        );
+        let name = match metric {
+            Metric::Nodes => "heatmap-bunny.png",
+            Metric::PrimitiveTests => "heatmap-bunny-prims.png",
+        };
+        let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+            .join("../../target")
+            .join(name);
+        std::fs::create_dir_all(path.parent().expect("folder")).expect("target folder");
+        let png = bvhlab_app::export::png_bytes(&map.image(None)).expect("png");
+        std::fs::write(&path, png).expect("written");
+        println!("wrote {}", path.display());
+    }
+    let Some(gpu) = gpu("measure_the_bunny_and_write_its_picture") else {
+        return;
+    };
+    let mut map = GpuHeatMap::new(&gpu.device);
+    map.upload(&gpu.device, &tree).expect("upload");
+    for round in 0..3 {
+        let start = std::time::Instant::now();
+        run(&gpu, &mut map, &frame, Metric::Nodes, None);
+        gpu.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .expect("poll");
+        println!(
+            "GPU (lavapipe) dispatch {round}: {:.3} s",
+            start.elapsed().as_secs_f64()
+        );
+    }
+    map.after_submit();
+    gpu.device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .expect("poll");
+    println!("GPU largest count read back: {:?}", map.largest_count());
 }

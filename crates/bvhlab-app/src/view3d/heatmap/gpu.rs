@@ -18,6 +18,11 @@ use wgpu::util::DeviceExt;
 use super::flatten::{FlatTree, GpuNode, GpuTriangle, flatten};
 use super::{Metric, colormap};
 use crate::view3d::camera::RayFrame;
+use resources::{bind_group, check_buffer, make_target, pipeline};
+
+#[cfg(not(target_arch = "wasm32"))]
+mod readback;
+mod resources;
 
 /// Pixels per workgroup side (8 × 8 = 64 invocations, within every WebGPU device's limits).
 const WORKGROUP: u32 = 8;
@@ -153,6 +158,10 @@ struct TreeBuffers {
 struct Target {
     size: [u32; 2],
     traces: wgpu::Buffer,
+    #[cfg_attr(
+        target_arch = "wasm32",
+        expect(dead_code, reason = "read back natively only; the views keep it alive")
+    )]
     texture: wgpu::Texture,
     /// `Rgba8Unorm`, written by the colouring pass.
     storage_view: wgpu::TextureView,
@@ -400,215 +409,4 @@ impl GpuHeatMap {
             None => renderer.register_native_texture(device, view, wgpu::FilterMode::Nearest),
         })
     }
-}
-
-/// Native read-backs that wait for the GPU (tests and measurements).
-#[cfg(not(target_arch = "wasm32"))]
-impl GpuHeatMap {
-    /// Every pixel's `[nodes visited, primitive tests, hit index (u32::MAX for none), hit t
-    /// (f32 bits)]` from the last dispatch (submitted), row-major from the top left.
-    ///
-    /// # Errors
-    /// When nothing was dispatched, or the read-back fails.
-    pub fn read_traces(
-        &self,
-        device: &wgpu::Device,
-        queue: &wgpu::Queue,
-    ) -> Result<Vec<[u32; 4]>, String> {
-        let target = self.target.as_ref().ok_or("nothing dispatched")?;
-        let bytes = read_buffer(device, queue, &target.traces)?;
-        Ok(bytemuck::cast_slice(&bytes).to_vec())
-    }
-
-    /// The last dispatch's counts of its metric, row-major from the top left.
-    ///
-    /// # Errors
-    /// As [`read_traces`](Self::read_traces).
-    pub fn read_counts(
-        &self,
-        device: &wgpu::Device,
-        queue: &wgpu::Queue,
-    ) -> Result<Vec<u32>, String> {
-        let metric = self.metric.index() as usize;
-        Ok(self
-            .read_traces(device, queue)?
-            .iter()
-            .map(|t| t[metric])
-            .collect())
-    }
-
-    /// The coloured image as RGBA bytes, row-major from the top left.
-    ///
-    /// # Errors
-    /// As [`read_traces`](Self::read_traces).
-    pub fn read_image(
-        &self,
-        device: &wgpu::Device,
-        queue: &wgpu::Queue,
-    ) -> Result<Vec<[u8; 4]>, String> {
-        let target = self.target.as_ref().ok_or("nothing dispatched")?;
-        let [w, h] = target.size;
-        let row = (w * 4).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT)
-            * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
-        let buffer = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("heat map image read-back"),
-            size: u64::from(row) * u64::from(h),
-            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
-            mapped_at_creation: false,
-        });
-        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
-        encoder.copy_texture_to_buffer(
-            target.texture.as_image_copy(),
-            wgpu::TexelCopyBufferInfo {
-                buffer: &buffer,
-                layout: wgpu::TexelCopyBufferLayout {
-                    offset: 0,
-                    bytes_per_row: Some(row),
-                    rows_per_image: Some(h),
-                },
-            },
-            wgpu::Extent3d {
-                width: w,
-                height: h,
-                depth_or_array_layers: 1,
-            },
-        );
-        queue.submit([encoder.finish()]);
-        let bytes = read_buffer(device, queue, &buffer)?;
-        Ok(bytes
-            .chunks(row as usize)
-            .flat_map(|r| {
-                r[..w as usize * 4]
-                    .chunks(4)
-                    .map(|p| [p[0], p[1], p[2], p[3]])
-            })
-            .collect())
-    }
-}
-
-/// Copies a buffer into a mappable one and reads it, waiting for the GPU.
-#[cfg(not(target_arch = "wasm32"))]
-fn read_buffer(
-    device: &wgpu::Device,
-    queue: &wgpu::Queue,
-    source: &wgpu::Buffer,
-) -> Result<Vec<u8>, String> {
-    let staging = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("heat map read-back"),
-        size: source.size(),
-        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    });
-    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
-    encoder.copy_buffer_to_buffer(source, 0, &staging, 0, source.size());
-    queue.submit([encoder.finish()]);
-    staging.map_async(wgpu::MapMode::Read, .., |_| {});
-    device
-        .poll(wgpu::PollType::wait_indefinitely())
-        .map_err(|e| e.to_string())?;
-    let bytes = staging
-        .get_mapped_range(..)
-        .map_err(|e| e.to_string())?
-        .to_vec();
-    staging.unmap();
-    Ok(bytes)
-}
-
-fn check_buffer(device: &wgpu::Device, what: &'static str, size: u64) -> Result<(), HeatMapError> {
-    let limits = device.limits();
-    let limit = u64::from(limits.max_storage_buffer_binding_size).min(limits.max_buffer_size);
-    if size > limit {
-        return Err(HeatMapError::TooBig { what, size, limit });
-    }
-    Ok(())
-}
-
-fn make_target(device: &wgpu::Device, size: [u32; 2]) -> Result<Target, HeatMapError> {
-    let side = device.limits().max_texture_dimension_2d;
-    let largest = size[0].max(size[1]);
-    if largest > side {
-        return Err(HeatMapError::TooBig {
-            what: "image",
-            size: u64::from(largest),
-            limit: u64::from(side),
-        });
-    }
-    let trace_bytes = u64::from(size[0]) * u64::from(size[1]) * TRACE_BYTES;
-    check_buffer(device, "pixel traces", trace_bytes)?;
-    let traces = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("heat map traces"),
-        size: trace_bytes,
-        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-        mapped_at_creation: false,
-    });
-    let texture = device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("heat map image"),
-        size: wgpu::Extent3d {
-            width: size[0],
-            height: size[1],
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: wgpu::TextureFormat::Rgba8Unorm,
-        usage: wgpu::TextureUsages::STORAGE_BINDING
-            | wgpu::TextureUsages::TEXTURE_BINDING
-            | wgpu::TextureUsages::COPY_SRC,
-        view_formats: &[wgpu::TextureFormat::Rgba8UnormSrgb],
-    });
-    let storage_view = texture.create_view(&wgpu::TextureViewDescriptor::default());
-    let display_view = texture.create_view(&wgpu::TextureViewDescriptor {
-        format: Some(wgpu::TextureFormat::Rgba8UnormSrgb),
-        usage: Some(wgpu::TextureUsages::TEXTURE_BINDING),
-        ..wgpu::TextureViewDescriptor::default()
-    });
-    Ok(Target {
-        size,
-        traces,
-        texture,
-        storage_view,
-        display_view,
-    })
-}
-
-fn pipeline(
-    device: &wgpu::Device,
-    label: &str,
-    source: &str,
-    entry: &str,
-) -> wgpu::ComputePipeline {
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some(label),
-        source: wgpu::ShaderSource::Wgsl(source.into()),
-    });
-    device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-        label: Some(label),
-        layout: None,
-        module: &module,
-        entry_point: Some(entry),
-        compilation_options: wgpu::PipelineCompilationOptions::default(),
-        cache: None,
-    })
-}
-
-/// A bind group for group 0 of a pipeline, bindings numbered in order.
-fn bind_group(
-    device: &wgpu::Device,
-    pipeline: &wgpu::ComputePipeline,
-    resources: &[wgpu::BindingResource<'_>],
-) -> wgpu::BindGroup {
-    let entries: Vec<wgpu::BindGroupEntry<'_>> = resources
-        .iter()
-        .enumerate()
-        .map(|(i, resource)| wgpu::BindGroupEntry {
-            binding: i as u32,
-            resource: resource.clone(),
-        })
-        .collect();
-    device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some("heat map"),
-        layout: &pipeline.get_bind_group_layout(0),
-        entries: &entries,
-    })
 }

@@ -3,7 +3,7 @@
 //! on a perceptual colour scale.
 //!
 //! Two paths give the same counts:
-//! - [`cpu`]: the core's own [`QueryCost`](bvhlab::structure::QueryCost) per pixel, for every
+//! - [`cpu`]: the core's own [`QueryCost`] per pixel, for every
 //!   structure, a slice of rays per frame.
 //! - [`gpu`]: a WGSL compute shader that walks the AABB tree ([`flatten`]ed to storage
 //!   buffers) exactly as the core does, where compute shaders exist (WebGPU and native, not
