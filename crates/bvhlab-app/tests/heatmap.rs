@@ -287,6 +287,13 @@ fn compare(gpu: &Gpu, name: &str, tris: &[Triangle3], size: u32) {
                     map.read_counts(&gpu.device, &gpu.queue).expect("counts"),
                     counts
                 );
+                // The largest count comes back asynchronously for the legend.
+                map.after_submit();
+                gpu.device
+                    .poll(wgpu::PollType::wait_indefinitely())
+                    .expect("poll");
+                let largest = counts.iter().copied().max();
+                assert_eq!(map.largest_count(), largest, "{name}, {view}, {metric:?}");
                 let image = colormap::colour_image(
                     &counts,
                     frame.width as usize,
@@ -905,6 +912,37 @@ fn validate_wgsl(name: &str, source: &str) {
 }
 
 #[test]
+fn the_legend_draws_the_bar_and_its_numbers() {
+    let ctx = egui::Context::default();
+    let mut output = ctx.run_ui(egui::RawInput::default(), |ui| {
+        colormap::legend(ui, 144, Metric::Nodes);
+    });
+    output.textures_delta.clear();
+    let shapes = format!("{:?}", output.shapes);
+    for text in ["nodes visited per ray", "\"0\"", "\"72\"", "\"144\""] {
+        assert!(shapes.contains(text), "{text} missing from the legend");
+    }
+    let bottom = egui::Color32::from_rgb(RAMP[0][0], RAMP[0][1], RAMP[0][2]);
+    let top = egui::Color32::from_rgb(RAMP[9][0], RAMP[9][1], RAMP[9][2]);
+    let meshes: Vec<_> = output
+        .shapes
+        .iter()
+        .filter_map(|c| match &c.shape {
+            egui::Shape::Mesh(m) => Some(m.clone()),
+            _ => None,
+        })
+        .collect();
+    let colours: Vec<egui::Color32> = meshes
+        .iter()
+        .flat_map(|m| m.vertices.iter().map(|v| v.color))
+        .collect();
+    assert!(
+        colours.contains(&bottom) && colours.contains(&top),
+        "the bar runs the whole ramp"
+    );
+}
+
+#[test]
 fn both_shaders_are_valid_wgsl() {
     validate_wgsl("trace", &trace_shader_source());
     validate_wgsl("colorize", &colorize_shader_source());
@@ -950,7 +988,30 @@ fn measure_the_bunny_and_write_its_picture() {
         return;
     };
     let tree = AabbTree3::build(&tris);
-    let frame = OrbitCamera::framing(&bounds(&tris)).ray_frame(640, 480);
+    let framing = OrbitCamera::framing(&bounds(&tris));
+    let frame = framing.ray_frame(640, 480);
+    // A close-up whose every ray meets the bunny's root box, most of them the bunny.
+    let close = OrbitCamera {
+        distance: framing.distance * 0.3,
+        ..framing
+    }
+    .ray_frame(640, 480);
+    for (view, f) in [("framing", &frame), ("close-up", &close)] {
+        let mut hits = 0usize;
+        let start = std::time::Instant::now();
+        for y in 0..f.height {
+            for x in 0..f.width {
+                let ray = f.ray(x, y).expect("ray");
+                hits += usize::from(tree.ray_first_hit(&ray, f32::INFINITY).is_some());
+            }
+        }
+        let seconds = start.elapsed().as_secs_f64();
+        println!(
+            "CPU, {view}: {:.0} rays/s (one thread), {:.0}% of the pixels hit the bunny",
+            f64::from(f.width * f.height) / seconds,
+            100.0 * hits as f64 / f64::from(f.width * f.height)
+        );
+    }
     for metric in [Metric::Nodes, Metric::PrimitiveTests] {
         let mut map = CpuHeatMap::new(frame, metric);
         let start = std::time::Instant::now();
@@ -982,16 +1043,18 @@ fn measure_the_bunny_and_write_its_picture() {
     };
     let mut map = GpuHeatMap::new(&gpu.device);
     map.upload(&gpu.device, &tree).expect("upload");
-    for round in 0..3 {
-        let start = std::time::Instant::now();
-        run(&gpu, &mut map, &frame, Metric::Nodes, None);
-        gpu.device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .expect("poll");
-        println!(
-            "GPU (lavapipe) dispatch {round}: {:.3} s",
-            start.elapsed().as_secs_f64()
-        );
+    for (view, f) in [("framing", &frame), ("close-up", &close)] {
+        for round in 0..3 {
+            let start = std::time::Instant::now();
+            run(&gpu, &mut map, f, Metric::Nodes, None);
+            gpu.device
+                .poll(wgpu::PollType::wait_indefinitely())
+                .expect("poll");
+            println!(
+                "GPU (lavapipe), {view}, dispatch {round}: {:.3} s",
+                start.elapsed().as_secs_f64()
+            );
+        }
     }
     map.after_submit();
     gpu.device

@@ -337,7 +337,10 @@ impl GpuHeatMap {
             pass.set_bind_group(0, group, &[]);
             pass.dispatch_workgroups(groups[0], groups[1], 1);
         }
-        if self.readback.load(Ordering::Acquire) == IDLE {
+        // The staging buffer can be copied into unless it is being mapped or is mapped; a
+        // copy recorded earlier but not yet mapped is overwritten by this newer one.
+        let state = self.readback.load(Ordering::Acquire);
+        if state == IDLE || state == COPIED {
             encoder.copy_buffer_to_buffer(&self.maxima, 0, &self.maxima_staging, 0, 8);
             self.readback.store(COPIED, Ordering::Release);
         }
