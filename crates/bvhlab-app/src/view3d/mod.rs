@@ -2,5 +2,7 @@
 //! traversals drawn with wgpu.
 //!
 //! - [`camera`]: the orbit camera and the one definition of a pixel's ray.
+//! - [`heatmap`]: the traversal-cost heat map, on the GPU (WGSL compute) and on the CPU.
 
 pub mod camera;
+pub mod heatmap;
