@@ -2,5 +2,7 @@
 //! traversals drawn with wgpu.
 //!
 //! - [`camera`]: the orbit camera and the one definition of a pixel's ray.
+//! - [`gpu`]: the wgpu renderer that draws the view, inside egui or headless.
 
 pub mod camera;
+pub mod gpu;
