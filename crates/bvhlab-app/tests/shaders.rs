@@ -1,0 +1,156 @@
+//! Every WGSL shader in the app's sources, found by walking `src/` when the tests run (so
+//! shaders added later are covered without a list to update), parsed and validated with naga,
+//! the compiler wgpu itself uses. Failures read as naga's own messages, with the file name and
+//! line. Shaders without compute entry points are also translated to GLSL ES 3.00 for WebGL2,
+//! the web's fallback, which has no storage buffers, so one written for WebGPU only fails here.
+
+use std::path::{Path, PathBuf};
+
+use naga::back::glsl;
+use naga::valid::{Capabilities, ValidationFlags, Validator};
+
+/// What every target offers: WebGL2 (the web's fallback) grants no optional capability, so a
+/// shader that needs one (64-bit floats, subgroups, cube-map arrays...) fails here rather than
+/// on a student's browser.
+const TARGET_CAPABILITIES: Capabilities = Capabilities::empty();
+
+fn source_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("src")
+}
+
+/// Every `.wgsl` file under `dir`, sorted.
+fn wgsl_files(dir: &Path) -> Vec<PathBuf> {
+    let mut found = Vec::new();
+    let mut pending = vec![dir.to_path_buf()];
+    while let Some(dir) = pending.pop() {
+        let entries = std::fs::read_dir(&dir)
+            .unwrap_or_else(|e| panic!("cannot list {}: {e}", dir.display()));
+        for entry in entries {
+            let path = entry.expect("a directory entry").path();
+            if path.is_dir() {
+                pending.push(path);
+            } else if path.extension().is_some_and(|e| e == "wgsl") {
+                found.push(path);
+            }
+        }
+    }
+    found.sort();
+    found
+}
+
+/// Parses and validates `source`; the error is naga's report, naming `name` and the line.
+fn check(name: &str, source: &str) -> Result<(naga::Module, naga::valid::ModuleInfo), String> {
+    let module = naga::front::wgsl::parse_str(source)
+        .map_err(|e| e.emit_to_string_with_path(source, name))?;
+    let info = Validator::new(ValidationFlags::all(), TARGET_CAPABILITIES)
+        .validate(&module)
+        .map_err(|e| e.emit_to_string_with_path(source, name))?;
+    Ok((module, info))
+}
+
+/// Translates every entry point to GLSL ES 3.00 as WebGL2 runs it; the first failure as text.
+fn check_webgl2(
+    name: &str,
+    module: &naga::Module,
+    info: &naga::valid::ModuleInfo,
+) -> Result<(), String> {
+    let options = glsl::Options {
+        version: glsl::Version::Embedded {
+            version: 300,
+            is_webgl: true,
+        },
+        ..glsl::Options::default()
+    };
+    for entry in &module.entry_points {
+        let pipeline = glsl::PipelineOptions {
+            shader_stage: entry.stage,
+            entry_point: entry.name.clone(),
+            multiview: None,
+        };
+        let mut out = String::new();
+        glsl::Writer::new(
+            &mut out,
+            module,
+            info,
+            &options,
+            &pipeline,
+            naga::proc::BoundsCheckPolicies::default(),
+        )
+        .and_then(|mut writer| writer.write())
+        .map_err(|e| format!("{name}: entry point `{}` for WebGL2: {e}", entry.name))?;
+    }
+    Ok(())
+}
+
+#[test]
+fn every_shader_parses_and_validates() {
+    let root = source_dir();
+    let files = wgsl_files(&root);
+    let mut failures = Vec::new();
+    for path in &files {
+        let name = path
+            .strip_prefix(&root)
+            .unwrap_or(path)
+            .display()
+            .to_string();
+        let source = std::fs::read_to_string(path).expect("a readable shader");
+        match check(&name, &source) {
+            Ok((module, info)) => {
+                let compute = module
+                    .entry_points
+                    .iter()
+                    .any(|e| e.stage == naga::ShaderStage::Compute);
+                if !compute && let Err(error) = check_webgl2(&name, &module, &info) {
+                    failures.push(error);
+                }
+            }
+            Err(report) => failures.push(report),
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+    // The 3D view's renderer's own shaders at least (others may add more).
+    let names = files
+        .iter()
+        .filter_map(|p| p.file_name()?.to_str())
+        .collect::<Vec<_>>();
+    for expected in [
+        "mesh.wgsl",
+        "lines.wgsl",
+        "triangles.wgsl",
+        "markers.wgsl",
+        "blit.wgsl",
+    ] {
+        assert!(
+            names.contains(&expected),
+            "{expected} not found in {names:?}"
+        );
+    }
+}
+
+#[test]
+fn a_syntax_error_is_reported_with_its_file_and_line() {
+    let source = "@vertex\nfn main() -> @builtin(position) vec4<f32> {\n    let x = 1.0\n    var y = 2.0;\n    return vec4<f32>(x);\n}\n";
+    let report = check("broken.wgsl", source).expect_err("a missing `;`");
+    // The `;` missing at the end of line 3 is noticed at the next token, `var` on line 4.
+    assert!(report.contains("broken.wgsl:4"), "{report}");
+    assert!(report.contains("expected"), "{report}");
+}
+
+#[test]
+fn a_type_error_is_reported_with_its_file_and_line() {
+    // Parses, but returns a scalar where the signature promises a vector: the validator's
+    // error, not the parser's.
+    let source = "@vertex\nfn main() -> @builtin(position) vec4<f32> {\n    let v = vec4<f32>(1.0);\n    return v.x;\n}\n";
+    let report = check("typed.wgsl", source).expect_err("a scalar returned as a vector");
+    assert!(report.contains("typed.wgsl:4"), "{report}");
+}
+
+#[test]
+fn a_storage_buffer_in_a_render_shader_fails_the_webgl2_check() {
+    let source = "@group(0) @binding(0) var<storage, read> data: array<vec4<f32>>;\n\
+                  @vertex\nfn main(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {\n\
+                  return data[i];\n}\n";
+    let (module, info) = check("storage.wgsl", source).expect("valid WGSL");
+    let error = check_webgl2("storage.wgsl", &module, &info).expect_err("no SSBOs in ES 3.00");
+    assert!(error.contains("storage.wgsl"), "{error}");
+}
