@@ -78,7 +78,11 @@
 //! and `tests`.
 
 mod build;
+mod build_job;
 mod build_log;
+mod fit_sliced;
+mod fit_sliced_obb;
+mod fit_sliced_sphere;
 mod lecture;
 mod node_aabb;
 mod node_obb;
@@ -99,6 +103,7 @@ pub mod volume;
 #[cfg(test)]
 mod tests;
 
+pub use build_job::{BuildPhase, BuildProgress, BvhBuild};
 pub use build_log::SplitRecord;
 pub use options::{BvhOptions, MAX_DEPTH, SphereFit, SplitMethod};
 pub use tree::{Bvh, BvhNode};

@@ -1,28 +1,19 @@
 //! The lecture's splits: along the longest axis of the centres' box, at its middle (spatial
 //! median) or at the median centre (object median).
 
-use super::build::{BuildPrim, Split, partition};
+use super::build::{BuildPrim, Split};
 use crate::Vector;
 use crate::volume::Aabb;
 
-/// The lecture's split at the middle of the longest axis of the centres' box: primitives
-/// whose centre lies below the middle go left. `None` when every centre falls on one side
-/// (they coincide along that axis, or the extent overflowed): the caller then takes the
-/// object median.
-pub(super) fn spatial_median<V: Vector>(
-    items: &mut [BuildPrim<V>],
-    centroids: &Aabb<V>,
-) -> Option<Split> {
+/// The lecture's plane at the middle of the longest axis of the centres' box, as `(axis,
+/// position)`: primitives whose centre lies below `position` go left. The builder
+/// partitions them (in steps, for a resumable build) and takes the object median when every
+/// centre falls on one side (they coincide along that axis, or the extent overflowed).
+pub(super) fn spatial_median_plane<V: Vector>(centroids: &Aabb<V>) -> (usize, f32) {
     let axis = centroids.longest_axis();
     // Halving before adding cannot overflow.
     let position = centroids.min.coord(axis) * 0.5 + centroids.max.coord(axis) * 0.5;
-    let mid = partition(items, |item| item.centroid.coord(axis) < position);
-    (mid > 0 && mid < items.len()).then_some(Split {
-        axis,
-        position,
-        left: mid,
-        cost: None,
-    })
+    (axis, position)
 }
 
 /// Half the primitives on each side, by their centres along the longest axis of the

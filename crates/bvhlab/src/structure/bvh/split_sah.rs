@@ -82,83 +82,105 @@ fn half_area<V: Vector>(b: &Aabb<V>) -> f64 {
     }
 }
 
-/// Bins the primitives along every axis with a non-zero, finite extent of the centres' box
-/// and returns the cheapest axis's plane (its curve stays in `scratch`). `None` when no axis
-/// can be binned (the centres coincide) or the node's area is zero or infinite (the
-/// heuristic says nothing then).
-pub(super) fn binned_sah<V: Vector>(
-    items: &[BuildPrim<V>],
-    bounds: &Aabb<V>,
-    centroids: &Aabb<V>,
-    bins: usize,
-    scratch: &mut SahScratch<V>,
-) -> Option<SahCurve> {
-    let node_area = half_area(bounds);
-    if !(node_area > 0.0 && node_area.is_finite()) {
-        return None;
+/// The binning of one node, filled a chunk of primitives at a time so that a resumable
+/// build can spread a large node over several steps: [`start`](Self::start), then
+/// [`add`](Self::add) over the node's primitives in order, then [`finish`](Self::finish).
+/// Adding in chunks merges the same boxes in the same order as adding all at once.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct SahBinning {
+    /// One curve per axis that can be binned (a non-zero, finite extent of the centres).
+    curves: [Option<SahCurve>; 3],
+    /// Half the node's surface area (perimeter in 2D).
+    node_area: f64,
+}
+
+impl SahBinning {
+    /// Prepares the bins of every axis with a non-zero, finite extent of the centres' box.
+    /// `None` when the node's area is zero or infinite: the heuristic says nothing then.
+    pub fn start<V: Vector>(
+        bounds: &Aabb<V>,
+        centroids: &Aabb<V>,
+        bins: usize,
+        scratch: &mut SahScratch<V>,
+    ) -> Option<Self> {
+        let node_area = half_area(bounds);
+        if !(node_area > 0.0 && node_area.is_finite()) {
+            return None;
+        }
+        let bins = bins.clamp(2, MAX_BINS);
+        let curves = std::array::from_fn(|axis| {
+            let lo = centroids.min.coord(axis.min(V::DIM - 1));
+            let extent = centroids.max.coord(axis.min(V::DIM - 1)) - lo;
+            (axis < V::DIM && extent > 0.0 && extent.is_finite()).then_some(SahCurve {
+                axis,
+                bins,
+                lo,
+                scale: bins as f32 / extent,
+                best: 0,
+                best_cost: f32::INFINITY,
+                left: 0,
+            })
+        });
+        scratch.bins.clear();
+        scratch.bins.resize(V::DIM * bins, (Aabb::EMPTY, 0));
+        Some(Self { curves, node_area })
     }
-    let bins = bins.clamp(2, MAX_BINS);
-    // One curve per axis that can be binned (a non-zero, finite extent of the centres).
-    let curves: [Option<SahCurve>; 3] = std::array::from_fn(|axis| {
-        let lo = centroids.min.coord(axis.min(V::DIM - 1));
-        let extent = centroids.max.coord(axis.min(V::DIM - 1)) - lo;
-        (axis < V::DIM && extent > 0.0 && extent.is_finite()).then_some(SahCurve {
-            axis,
-            bins,
-            lo,
-            scale: bins as f32 / extent,
-            best: 0,
-            best_cost: f32::INFINITY,
-            left: 0,
-        })
-    });
-    // Fill the bins of every axis in one pass over the primitives.
-    scratch.bins.clear();
-    scratch.bins.resize(V::DIM * bins, (Aabb::EMPTY, 0));
-    for item in items {
-        for curve in curves.iter().flatten() {
+
+    /// Puts each primitive into its bin on every binned axis.
+    pub fn add<V: Vector>(&self, items: &[BuildPrim<V>], scratch: &mut SahScratch<V>) {
+        for item in items {
+            for curve in self.curves.iter().flatten() {
+                let axis = curve.axis;
+                let bin = curve.axis * curve.bins + curve.bin_of(item.centroid.coord(axis));
+                let bin = &mut scratch.bins[bin];
+                bin.0 = bin.0.merge(&item.bounds);
+                bin.1 += 1;
+            }
+        }
+    }
+
+    /// Costs every plane and returns the cheapest axis's (its curve stays in `scratch`).
+    /// `None` when no axis could be binned (the centres coincide).
+    pub fn finish<V: Vector>(&self, scratch: &mut SahScratch<V>) -> Option<SahCurve> {
+        let bins = self.curves.iter().flatten().map(|c| c.bins).next()?;
+        scratch.costs.clear();
+        scratch.costs.resize(V::DIM * (bins - 1), f32::INFINITY);
+        let mut best: Option<SahCurve> = None;
+        for mut curve in self.curves.into_iter().flatten() {
             let axis = curve.axis;
-            let bin = &mut scratch.bins[axis * bins + curve.bin_of(item.centroid.coord(axis))];
-            bin.0 = bin.0.merge(&item.bounds);
-            bin.1 += 1;
-        }
-    }
-    scratch.costs.clear();
-    scratch.costs.resize(V::DIM * (bins - 1), f32::INFINITY);
-    let mut best: Option<SahCurve> = None;
-    for mut curve in curves.into_iter().flatten() {
-        let axis = curve.axis;
-        let axis_bins = &scratch.bins[axis * bins..(axis + 1) * bins];
-        // Sweep from the right: the area and count above each plane.
-        scratch.above.clear();
-        scratch.above.resize(bins - 1, (0.0, 0));
-        let (mut acc, mut n) = (Aabb::<V>::EMPTY, 0);
-        for i in (1..bins).rev() {
-            acc = acc.merge(&axis_bins[i].0);
-            n += axis_bins[i].1;
-            scratch.above[i - 1] = (half_area(&acc), n);
-        }
-        // Sweep from the left, costing each plane.
-        let costs = &mut scratch.costs[axis * (bins - 1)..(axis + 1) * (bins - 1)];
-        let (mut acc, mut n) = (Aabb::<V>::EMPTY, 0);
-        for i in 0..bins - 1 {
-            acc = acc.merge(&axis_bins[i].0);
-            n += axis_bins[i].1;
-            let (area_above, n_above) = scratch.above[i];
-            if n == 0 || n_above == 0 {
-                continue;
+            let axis_bins = &scratch.bins[axis * bins..(axis + 1) * bins];
+            // Sweep from the right: the area and count above each plane.
+            scratch.above.clear();
+            scratch.above.resize(bins - 1, (0.0, 0));
+            let (mut acc, mut n) = (Aabb::<V>::EMPTY, 0);
+            for i in (1..bins).rev() {
+                acc = acc.merge(&axis_bins[i].0);
+                n += axis_bins[i].1;
+                scratch.above[i - 1] = (half_area(&acc), n);
             }
-            let cost = 1.0 + (half_area(&acc) * n as f64 + area_above * n_above as f64) / node_area;
-            costs[i] = cost as f32;
-            if costs[i] < curve.best_cost {
-                curve.best = i;
-                curve.best_cost = costs[i];
-                curve.left = n;
+            // Sweep from the left, costing each plane.
+            let costs = &mut scratch.costs[axis * (bins - 1)..(axis + 1) * (bins - 1)];
+            let (mut acc, mut n) = (Aabb::<V>::EMPTY, 0);
+            for i in 0..bins - 1 {
+                acc = acc.merge(&axis_bins[i].0);
+                n += axis_bins[i].1;
+                let (area_above, n_above) = scratch.above[i];
+                if n == 0 || n_above == 0 {
+                    continue;
+                }
+                let cost = 1.0
+                    + (half_area(&acc) * n as f64 + area_above * n_above as f64) / self.node_area;
+                costs[i] = cost as f32;
+                if costs[i] < curve.best_cost {
+                    curve.best = i;
+                    curve.best_cost = costs[i];
+                    curve.left = n;
+                }
+            }
+            if best.is_none_or(|b| curve.best_cost < b.best_cost) {
+                best = Some(curve);
             }
         }
-        if best.is_none_or(|b| curve.best_cost < b.best_cost) {
-            best = Some(curve);
-        }
+        best.filter(|curve| curve.best_cost.is_finite())
     }
-    best.filter(|curve| curve.best_cost.is_finite())
 }
