@@ -26,7 +26,7 @@ cargo bench --workspace --exclude bvhlab-app --no-run
 
 step "lints (native, then the core and the lab for wasm32)"
 cargo clippy --workspace --all-targets -- -D warnings
-cargo clippy -p bvhlab -p bvhlab-app --target wasm32-unknown-unknown -- -D warnings
+cargo clippy -p bvhlab -p bvhlab-meshio -p bvhlab-app --target wasm32-unknown-unknown -- -D warnings
 
 step "docs"
 RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps

@@ -7,6 +7,7 @@ use bvhlab::{NodeId, Ray2};
 use web_time::Instant;
 
 use crate::frame_clock::FrameClock;
+use crate::lab3d::Lab3d;
 use crate::lane::Lane;
 use crate::playback::Playback;
 use crate::presets::Preset;
@@ -17,6 +18,16 @@ use crate::scene::Scene;
 use crate::tool::{Interaction, Tool};
 use crate::view::View;
 use crate::volumes::{ObbPair, VolumeToggles};
+
+/// Which half of the lab is shown.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Dimension {
+    /// Segments drawn on the 2D canvas.
+    #[default]
+    Two,
+    /// Meshes in the 3D view.
+    Three,
+}
 
 /// How the structure is drawn.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -73,6 +84,12 @@ pub type FitsKey = (u64, Vec<usize>);
 
 /// The whole lab.
 pub struct LabApp {
+    /// The 2D canvas or the 3D view.
+    pub dimension: Dimension,
+    /// The 3D view's mesh, structure, camera, ray and point.
+    pub lab3d: Lab3d,
+    /// The GPU the lab draws with (none in headless tests): the 3D view draws through it.
+    pub render_state: Option<eframe::egui_wgpu::RenderState>,
     /// What the student drew.
     pub scene: Scene,
     /// The selected shapes (by index).
@@ -144,6 +161,9 @@ impl Default for LabApp {
         let preset = Preset::default();
         let (scene, settings) = preset.build();
         Self {
+            dimension: Dimension::Two,
+            lab3d: Lab3d::default(),
+            render_state: None,
             scene,
             selection: Vec::new(),
             view: View::default(),
@@ -224,10 +244,38 @@ impl LabApp {
         }
     }
 
+    /// The question the 3D view steps through.
+    pub fn question_3d(&self) -> Question<bvhlab::glam::Vec3> {
+        let variant = if crate::pseudocode::variants(self.lab3d.settings.kind, self.task)
+            .contains(&self.variant)
+        {
+            self.variant
+        } else {
+            Variant::Full
+        };
+        Question {
+            task: self.task,
+            variant,
+            ray: self.lab3d.ray,
+            point: self.lab3d.point,
+            k: self.k.max(1),
+            radius: self.lab3d.radius,
+        }
+    }
+
     /// Rebuilds the structures when the scene or the settings changed, re-records the
     /// question when anything it depends on changed, and brings the snapshots to the
     /// playback step.
     pub fn refresh(&mut self) {
+        if self.dimension == Dimension::Three {
+            let question = self.question_3d();
+            if self.lab3d.refresh(&question) {
+                let len = self.steps();
+                self.playback.fit(len);
+            }
+            self.lab3d.follow(&self.playback);
+            return;
+        }
         let question = self.question();
         let mut changed = self.lane.refresh(&self.scene, &question);
         if let Some(other) = &mut self.compare {
@@ -288,6 +336,9 @@ impl LabApp {
 
     /// The longest recording's length: the last step of playback.
     pub fn steps(&self) -> usize {
+        if self.dimension == Dimension::Three {
+            return self.lab3d.steps();
+        }
         self.lane
             .steps()
             .max(self.compare.as_ref().map_or(0, Lane::steps))
@@ -314,18 +365,28 @@ impl LabApp {
         self.clock.tick(Instant::now());
         self.refresh();
         self.playback_keys(ui);
+        // Files dropped on the window (or picked in a dialog) open in either half.
+        crate::persist::poll_imports(self, ui.ctx());
         crate::export_ui::finish_png(self, ui.ctx());
         if self.playback.advance(dt, self.steps()) {
             self.refresh();
         }
-        if self.playback.playing {
+        if self.playback.playing || (self.dimension == Dimension::Three && self.lab3d.busy()) {
             ui.ctx().request_repaint();
         }
+        let three = self.dimension == Dimension::Three;
         egui::Panel::left("controls")
             .resizable(true)
             .default_size(340.0)
             .show(ui, |ui| {
-                egui::ScrollArea::vertical().show(ui, |ui| crate::panels::controls(self, ui));
+                egui::ScrollArea::vertical().show(ui, |ui| {
+                    self.dimension_switch(ui);
+                    if three {
+                        crate::lab3d::panel::controls(self, ui);
+                    } else {
+                        crate::panels::controls(self, ui);
+                    }
+                });
             });
         egui::Panel::bottom("status").show(ui, |ui| crate::panels::status_line(self, ui));
         egui::Panel::right("stepper")
@@ -334,7 +395,7 @@ impl LabApp {
             .show(ui, |ui| {
                 egui::ScrollArea::vertical().show(ui, |ui| crate::stepper::stepper(self, ui));
             });
-        if self.show_tree {
+        if self.show_tree && !three {
             egui::Panel::bottom("tree")
                 .resizable(true)
                 .default_size(230.0)
@@ -344,8 +405,29 @@ impl LabApp {
         }
         egui::CentralPanel::default()
             .frame(egui::Frame::NONE.fill(egui::Color32::from_rgb(24, 26, 32)))
-            .show(ui, |ui| crate::canvas::canvas(self, ui));
+            .show(ui, |ui| {
+                if three {
+                    crate::lab3d::view::view(self, ui);
+                } else {
+                    crate::canvas::canvas(self, ui);
+                }
+            });
         self.report = Report::of(self);
+    }
+
+    /// The 2D / 3D switch at the top of the controls.
+    fn dimension_switch(&mut self, ui: &mut egui::Ui) {
+        ui.horizontal(|ui| {
+            let before = self.dimension;
+            ui.selectable_value(&mut self.dimension, Dimension::Two, "2D: segments");
+            ui.selectable_value(&mut self.dimension, Dimension::Three, "3D: meshes");
+            if self.dimension != before {
+                // Each half has its own recording: start its playback at the end.
+                self.playback = Playback::default();
+                self.refresh();
+            }
+        });
+        ui.separator();
     }
 }
 
@@ -353,6 +435,12 @@ impl eframe::App for LabApp {
     fn ui(&mut self, ui: &mut egui::Ui, frame: &mut eframe::Frame) {
         if self.renderer.is_none() {
             self.renderer = Some(renderer_name(frame));
+            self.render_state = frame.wgpu_render_state().cloned();
+            if let Some(state) = &self.render_state {
+                // eframe's default options: one sample, no depth buffer in egui's pass.
+                let target = crate::view3d::gpu::EguiTarget::new(state.target_format);
+                crate::view3d::gpu::install(state, target);
+            }
         }
         if let Some(seconds) = frame.info().cpu_usage {
             self.clock.record_cpu(f64::from(seconds) * 1e3);

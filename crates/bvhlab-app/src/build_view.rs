@@ -4,24 +4,37 @@
 
 use egui_plot::{HLine, Line, Plot, PlotPoints, Points, VLine};
 
-use crate::lane::Lane;
+use bvhlab::Vector;
+
 use crate::paint::colors;
 use crate::playback::Snapshot;
+use crate::recording::Recording;
+use crate::structures::StructureKind;
 
 /// The current node's split and, where the builder logged one, its SAH cost curve.
-pub fn split_view(lane: &Lane, snap: &Snapshot, ui: &mut egui::Ui) {
-    let Some(rec) = lane.recorded() else { return };
+pub fn split_view<V: Vector>(
+    rec: &Recording<V>,
+    kind: StructureKind,
+    snap: &Snapshot<V>,
+    ui: &mut egui::Ui,
+) {
     let Some(node) = snap.current else {
         ui.label("The build has not started.");
         return;
     };
     match snap.split {
         Some(split) if split.node == node => {
-            let axis = if split.normal.x.abs() >= split.normal.y.abs() {
-                "x"
-            } else {
-                "y"
-            };
+            // The axis the plane's normal points along most.
+            let axis = (0..V::DIM)
+                .max_by(|&a, &b| {
+                    split
+                        .normal
+                        .coord(a)
+                        .abs()
+                        .total_cmp(&split.normal.coord(b).abs())
+                })
+                .and_then(|i| ["x", "y", "z"].get(i).copied())
+                .unwrap_or("x");
             ui.label(format!(
                 "node {}: split at {axis} = {:.3}: {} primitives below, {} above{}",
                 node.0,
@@ -38,7 +51,7 @@ pub fn split_view(lane: &Lane, snap: &Snapshot, ui: &mut egui::Ui) {
         }
     }
     let Some(record) = rec.splits.iter().find(|r| r.node == node) else {
-        if lane.settings.kind.is_bvh() {
+        if kind.is_bvh() {
             ui.label(
                 "No cost curve: median splits have none (choose the binned SAH split for one).",
             );

@@ -22,6 +22,7 @@ pub mod canvas;
 pub mod export;
 pub mod export_ui;
 pub mod frame_clock;
+pub mod lab3d;
 pub mod lane;
 pub mod paint;
 pub mod panels;

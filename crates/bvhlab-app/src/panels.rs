@@ -11,7 +11,7 @@ use crate::app::LabApp;
 use crate::paint::colors;
 use crate::presets::Preset;
 use crate::query::NodeMark;
-use crate::structures::{KdSplit, StructureKind};
+use crate::structures::{BuildSettings, KdSplit, StructureKind};
 use crate::tool::{Interaction, Tool};
 use crate::volumes::SlabExplain;
 
@@ -36,9 +36,15 @@ pub fn controls(app: &mut LabApp, ui: &mut egui::Ui) {
 
 /// The line at the bottom: the last message, or what the tool does; and the frame rate.
 pub fn status_line(app: &LabApp, ui: &mut egui::Ui) {
+    let three = app.dimension == crate::app::Dimension::Three;
+    let message = app
+        .message
+        .as_ref()
+        .or_else(|| app.lab3d.message.as_ref().filter(|_| three));
     ui.horizontal(|ui| {
-        match &app.message {
+        match message {
             Some(m) => ui.label(RichText::new(m).color(colors::SELECTED)),
+            None if three => ui.label(crate::lab3d::panel::status(app)),
             None => ui.label(app.tool.hint()),
         };
         ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
@@ -338,12 +344,17 @@ fn slab_details(s: &SlabExplain, ui: &mut egui::Ui) {
 }
 
 fn structure_section(app: &mut LabApp, ui: &mut egui::Ui) {
-    let s = &mut app.lane.settings;
+    settings_editor(&mut app.lane.settings, 2, ui);
+    structure_display(app, ui);
+}
+
+/// The structure picker and its build options, for a scene in `dim` dimensions.
+pub fn settings_editor(s: &mut BuildSettings, dim: usize, ui: &mut egui::Ui) {
     egui::ComboBox::from_label("Structure")
-        .selected_text(s.kind.label())
+        .selected_text(s.kind.label_in(dim))
         .show_ui(ui, |ui| {
             for kind in StructureKind::ALL {
-                ui.selectable_value(&mut s.kind, kind, kind.label());
+                ui.selectable_value(&mut s.kind, kind, kind.label_in(dim));
             }
         });
     if s.kind.is_bvh() {
@@ -371,7 +382,11 @@ fn structure_section(app: &mut LabApp, ui: &mut egui::Ui) {
             ui.radio_value(
                 &mut s.kd_split,
                 KdSplit::MedianRoundRobin,
-                "median, x/y in turn",
+                if dim == 3 {
+                    "median, x/y/z in turn"
+                } else {
+                    "median, x/y in turn"
+                },
             );
             ui.radio_value(
                 &mut s.kd_split,
@@ -391,7 +406,6 @@ fn structure_section(app: &mut LabApp, ui: &mut egui::Ui) {
     if s.kind == StructureKind::Quadtree {
         ui.add(egui::Slider::new(&mut s.quadtree_depth, 1..=14).text("max depth"));
     }
-    structure_display(app, ui);
 }
 
 fn structure_display(app: &mut LabApp, ui: &mut egui::Ui) {
@@ -615,7 +629,6 @@ fn point_answer(app: &LabApp, ui: &mut egui::Ui) {
 /// opens the files dropped on the window (this panel is drawn every frame, open or not).
 fn persist_section(app: &mut LabApp, ui: &mut egui::Ui) {
     use crate::persist;
-    persist::poll_imports(app, ui.ctx());
     CollapsingHeader::new("Save and share")
         .default_open(true)
         .show(ui, |ui| {

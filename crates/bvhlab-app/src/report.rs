@@ -26,6 +26,8 @@ pub struct Report {
     pub nearest: Option<NearestReport>,
     /// Playback: what is stepped through and where it is, per lane.
     pub playback: Vec<PlaybackReport>,
+    /// The 3D view, when it is shown.
+    pub three: Option<crate::lab3d::report::Report3d>,
     /// The median interval between frames, in milliseconds.
     pub frame_ms: Option<f64>,
     /// The median CPU time per frame (UI, tessellation, draw calls), in milliseconds.
@@ -123,8 +125,23 @@ pub struct PlaybackReport {
 
 impl PlaybackReport {
     fn of(lane: &crate::lane::Lane) -> Option<Self> {
-        let structure = lane.settings.kind.label().to_owned();
-        let rec = match lane.recording.as_ref()? {
+        Self::of_recording(
+            lane.settings.kind.label(),
+            lane.settings.kind,
+            lane.recording.as_ref(),
+            lane.snapshot.as_ref(),
+        )
+    }
+
+    /// The report of a recording at its snapshot, in either dimension.
+    pub fn of_recording<V: bvhlab::Vector>(
+        structure: &str,
+        kind: crate::structures::StructureKind,
+        recording: Option<&Result<crate::recording::Recording<V>, String>>,
+        snapshot: Option<&crate::playback::Snapshot<V>>,
+    ) -> Option<Self> {
+        let structure = structure.to_owned();
+        let rec = match recording? {
             Ok(rec) => rec,
             Err(why) => {
                 return Some(Self {
@@ -143,11 +160,12 @@ impl PlaybackReport {
                 });
             }
         };
-        let snap = lane.snapshot.as_ref()?;
+        let snap = snapshot?;
         let q = rec.question;
-        let line = snap.step.checked_sub(1).and_then(|i| {
-            crate::pseudocode::line_of(lane.settings.kind, q.task, q.variant, &rec.events, i)
-        });
+        let line = snap
+            .step
+            .checked_sub(1)
+            .and_then(|i| crate::pseudocode::line_of(kind, q.task, q.variant, &rec.events, i));
         Some(Self {
             structure,
             task: format!("{:?}", q.task),
@@ -224,7 +242,21 @@ impl Report {
                 brute_force_tests: o.brute_cost.prim_tests,
                 agrees: o.agrees(),
             }),
-            playback: app.lanes().filter_map(PlaybackReport::of).collect(),
+            playback: if app.dimension == crate::app::Dimension::Three {
+                let lab = &app.lab3d;
+                PlaybackReport::of_recording(
+                    lab.settings.kind.label_in(3),
+                    lab.settings.kind,
+                    lab.recording.as_ref(),
+                    lab.snapshot.as_ref(),
+                )
+                .into_iter()
+                .collect()
+            } else {
+                app.lanes().filter_map(PlaybackReport::of).collect()
+            },
+            three: (app.dimension == crate::app::Dimension::Three)
+                .then(|| crate::lab3d::report::Report3d::of(&app.lab3d)),
             frame_ms: app.clock.median_ms(),
             cpu_ms: app.clock.median_cpu_ms(),
         }

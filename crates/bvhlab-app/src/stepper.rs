@@ -2,6 +2,7 @@
 //! current line, the counters against brute force, the stack or queue, the best so far, and
 //! for builds the split and its SAH cost curve.
 
+use bvhlab::Vector;
 use egui::{Color32, RichText};
 
 use crate::app::LabApp;
@@ -9,6 +10,7 @@ use crate::lane::Lane;
 use crate::paint::colors;
 use crate::playback::{Counters, Frontier, Snapshot, describe};
 use crate::pseudocode::{Task, Variant};
+use crate::recording::Recording;
 use crate::structures::StructureKind;
 
 /// Every task, in menu order, with its label.
@@ -42,6 +44,20 @@ pub fn task_label(task: Task) -> &'static str {
 pub fn stepper(app: &mut LabApp, ui: &mut egui::Ui) {
     ui.heading("Step through");
     task_picker(app, ui);
+    if app.dimension == crate::app::Dimension::Three {
+        ui.separator();
+        transport(app, ui);
+        ui.separator();
+        let lab = &app.lab3d;
+        recording_state(
+            lab.recording.as_ref(),
+            lab.snapshot.as_ref(),
+            lab.settings.kind,
+            0,
+            ui,
+        );
+        return;
+    }
     compare_picker(app, ui);
     ui.separator();
     transport(app, ui);
@@ -71,7 +87,12 @@ pub fn task_picker(app: &mut LabApp, ui: &mut egui::Ui) {
                 ui.selectable_value(&mut app.task, task, label);
             }
         });
-    let variants = crate::pseudocode::variants(app.lane.settings.kind, app.task);
+    let kind = if app.dimension == crate::app::Dimension::Three {
+        app.lab3d.settings.kind
+    } else {
+        app.lane.settings.kind
+    };
+    let variants = crate::pseudocode::variants(kind, app.task);
     if variants.len() > 1 {
         ui.horizontal_wrapped(|ui| {
             for v in variants {
@@ -79,7 +100,7 @@ pub fn task_picker(app: &mut LabApp, ui: &mut egui::Ui) {
             }
         });
     }
-    if app.task == Task::Range {
+    if app.task == Task::Range && app.dimension == crate::app::Dimension::Two {
         ui.add(
             egui::Slider::new(&mut app.radius, 0.0..=50.0)
                 .logarithmic(true)
@@ -156,7 +177,25 @@ fn transport(app: &mut LabApp, ui: &mut egui::Ui) {
 }
 
 fn lane_state(lane: &Lane, index: usize, ui: &mut egui::Ui) {
-    let rec = match &lane.recording {
+    recording_state(
+        lane.recording.as_ref(),
+        lane.snapshot.as_ref(),
+        lane.settings.kind,
+        index,
+        ui,
+    );
+}
+
+/// One structure's recording at the playback step: the sentence, the listing with its line,
+/// the counters, the waiting nodes, the best so far, and a build's split.
+fn recording_state<V: Vector>(
+    recording: Option<&Result<Recording<V>, String>>,
+    snapshot: Option<&Snapshot<V>>,
+    kind: StructureKind,
+    index: usize,
+    ui: &mut egui::Ui,
+) {
+    let rec = match recording {
         Some(Ok(rec)) => rec,
         Some(Err(why)) => {
             ui.colored_label(colors::PRUNED, why);
@@ -164,8 +203,7 @@ fn lane_state(lane: &Lane, index: usize, ui: &mut egui::Ui) {
         }
         None => return,
     };
-    let Some(snap) = &lane.snapshot else { return };
-    let kind = lane.settings.kind;
+    let Some(snap) = snapshot else { return };
     let q = rec.question;
     let line = snap
         .step
@@ -196,7 +234,7 @@ fn lane_state(lane: &Lane, index: usize, ui: &mut egui::Ui) {
     frontier_view(snap, ui);
     best_view(rec.question.task, snap, ui);
     if q.task == Task::Build {
-        crate::build_view::split_view(lane, snap, ui);
+        crate::build_view::split_view(rec, kind, snap, ui);
     }
 }
 
@@ -244,9 +282,9 @@ fn code_lines(code: &crate::pseudocode::Pseudocode, line: Option<usize>, ui: &mu
     }
 }
 
-fn counters_table(
-    rec: &crate::recording::Recording,
-    snap: &Snapshot,
+fn counters_table<V: Vector>(
+    rec: &Recording<V>,
+    snap: &Snapshot<V>,
     index: usize,
     ui: &mut egui::Ui,
 ) {
@@ -312,7 +350,7 @@ fn counters_table(
     }
 }
 
-fn frontier_view(snap: &Snapshot, ui: &mut egui::Ui) {
+fn frontier_view<V: Vector>(snap: &Snapshot<V>, ui: &mut egui::Ui) {
     const SHOWN: usize = 12;
     if !snap.cells.is_empty() {
         let cells: Vec<String> = snap
@@ -375,7 +413,7 @@ fn frontier_view(snap: &Snapshot, ui: &mut egui::Ui) {
     );
 }
 
-fn best_view(task: Task, snap: &Snapshot, ui: &mut egui::Ui) {
+fn best_view<V: Vector>(task: Task, snap: &Snapshot<V>, ui: &mut egui::Ui) {
     let what = match task {
         Task::FirstHit | Task::AnyHit => "best hit so far",
         Task::AllHits => "hits so far",

@@ -106,6 +106,18 @@ pub struct BuildSettings {
     pub quadtree_depth: usize,
 }
 
+impl BuildSettings {
+    /// The core's options for a BVH built with these settings.
+    pub fn bvh_options(&self) -> BvhOptions {
+        BvhOptions {
+            method: self.bvh_split,
+            max_leaf_size: self.leaf_size.max(1),
+            sphere_fit: self.sphere_fit,
+            ..BvhOptions::default()
+        }
+    }
+}
+
 impl Default for BuildSettings {
     fn default() -> Self {
         Self {
@@ -176,12 +188,7 @@ where
         observer: &mut O,
         log: bool,
     ) -> (Self, Vec<SplitRecord>) {
-        let bvh = BvhOptions {
-            method: settings.bvh_split,
-            max_leaf_size: settings.leaf_size.max(1),
-            sphere_fit: settings.sphere_fit,
-            ..BvhOptions::default()
-        };
+        let bvh = settings.bvh_options();
         let tree = |built: Self| (built, Vec::new());
         match settings.kind {
             StructureKind::BruteForce => tree(Self::BruteForce(BruteForce::build(prims))),

@@ -304,7 +304,8 @@ pub fn pick_file(ctx: &egui::Context, accept: &str) -> Result<(), String> {
     // Called once, when a file is chosen (a cancelled dialog never calls it).
     let on_change = Closure::once_into_js(move || {
         if let Some(file) = picked.files().and_then(|files| files.get(0)) {
-            read_file(ctx, file, crate::persist::MAX_FILE_BYTES);
+            let limit = crate::persist::read_limit(&file.name());
+            read_file(ctx, file, limit);
         }
     });
     input.set_onchange(Some(on_change.unchecked_ref()));
@@ -327,7 +328,8 @@ pub fn read_dropped(ctx: &egui::Context, file: &egui::DroppedFileHandle, limit: 
     }
 }
 
-/// Reads `file` as text (`File.text()`), refusing it unread when it is over `limit` bytes.
+/// Reads `file`'s bytes (`Blob.arrayBuffer()`: binary meshes must not pass through text),
+/// refusing it unread when it is over `limit` bytes.
 fn read_file(ctx: egui::Context, file: web_sys::File, limit: usize) {
     let name = file.name();
     if file.size() > limit as f64 {
@@ -340,11 +342,10 @@ fn read_file(ctx: egui::Context, file: web_sys::File, limit: usize) {
         return;
     }
     wasm_bindgen_futures::spawn_local(async move {
-        let bytes = JsFuture::from(file.text())
+        let bytes = JsFuture::from(file.array_buffer())
             .await
             .map_err(|e| describe(&e))
-            .and_then(|text| text.as_string().ok_or_else(|| "not text".to_owned()))
-            .map(String::into_bytes);
+            .map(|buffer| js_sys::Uint8Array::new(&buffer).to_vec());
         deliver(&ctx, News::Opened { name, bytes });
     });
 }

@@ -82,7 +82,7 @@ pub fn poll_imports(app: &mut LabApp, ctx: &egui::Context) {
     let dropped = ctx.input(|i| i.raw.dropped_files.clone());
     if let Some(file) = dropped.first() {
         #[cfg(target_arch = "wasm32")]
-        crate::web::read_dropped(ctx, file, MAX_FILE_BYTES);
+        crate::web::read_dropped(ctx, file, read_limit(&file.path().display().to_string()));
         #[cfg(not(target_arch = "wasm32"))]
         open_named(
             app,
@@ -120,8 +120,28 @@ pub fn poll_imports(app: &mut LabApp, ctx: &egui::Context) {
     }
 }
 
-/// Opens the bytes read from file `name`, and says how it went in the status line.
+/// Opens the bytes read from file `name`, and says how it went in the status line. A mesh
+/// file (by its extension) opens in the 3D view; anything else is read as a scene file.
 fn open_named(app: &mut LabApp, name: &str, bytes: Result<Vec<u8>, String>) {
+    if crate::lab3d::panel::is_mesh_file(name) {
+        match bytes {
+            Ok(bytes) => {
+                let short = name.rsplit(['/', '\\']).next().unwrap_or(name).to_owned();
+                app.dimension = crate::app::Dimension::Three;
+                app.lab3d.open(crate::lab3d::mesh::MeshSource::File {
+                    name: short,
+                    bytes: bytes.into(),
+                });
+                app.message = None;
+            }
+            Err(e) => {
+                app.message = Some(format!(
+                    "{name} could not be read ({e}). The current mesh was kept."
+                ));
+            }
+        }
+        return;
+    }
     let result = bytes
         .map_err(|e| format!("{name} could not be read ({e}). The current scene was kept."))
         .and_then(|bytes| open_file(app, &bytes));
@@ -131,21 +151,31 @@ fn open_named(app: &mut LabApp, name: &str, bytes: Result<Vec<u8>, String>) {
     });
 }
 
-/// A file's bytes, refusing files over [`MAX_FILE_BYTES`] before reading them.
+/// The most bytes read from a file called `name`: a mesh may be large, a scene file not.
+pub fn read_limit(name: &str) -> usize {
+    if crate::lab3d::panel::is_mesh_file(name) {
+        bvhlab_meshio::MAX_BYTES
+    } else {
+        MAX_FILE_BYTES
+    }
+}
+
+/// A file's bytes, refusing files over [`read_limit`] before reading them.
 #[cfg(not(target_arch = "wasm32"))]
 fn read_limited(path: &std::path::Path) -> Result<Vec<u8>, String> {
     use std::io::Read as _;
     let file = std::fs::File::open(path).map_err(|e| e.to_string())?;
     let len = file.metadata().map_err(|e| e.to_string())?.len();
-    if len > MAX_FILE_BYTES as u64 {
+    let limit = read_limit(&path.display().to_string());
+    if len > limit as u64 {
         return Err(format!(
             "it is {:.1} MiB; the lab reads at most {} MiB",
             len as f64 / f64::from(1 << 20),
-            MAX_FILE_BYTES >> 20
+            limit >> 20
         ));
     }
     let mut bytes = Vec::new();
-    file.take(MAX_FILE_BYTES as u64 + 1)
+    file.take(limit as u64 + 1)
         .read_to_end(&mut bytes)
         .map_err(|e| e.to_string())?;
     Ok(bytes)

@@ -30,7 +30,9 @@ mod restore;
 mod state;
 mod storage;
 
-pub use actions::{copy_share_link, export_scene, import_scene, poll_imports, share_link_text};
+pub use actions::{
+    copy_share_link, export_scene, import_scene, poll_imports, read_limit, share_link_text,
+};
 pub use file::{from_file, to_file};
 pub use link::{LINK_PREFIX, from_fragment, link_fragment};
 pub use names::{

@@ -1,0 +1,195 @@
+//! The 3D view's pointer: drag to orbit (shift-drag or right-drag to pan), scroll to zoom,
+//! click the mesh to cast a ray from the camera or to place the query point, and drag the
+//! gizmo's handles to move the ray's origin or direction or the point, freely in the view's
+//! plane or along one axis.
+
+use bvhlab::Ray3;
+use bvhlab::glam::{Vec2, Vec3};
+use egui::{Pos2, Rect, Response};
+
+use super::{Lab3d, Tool3d};
+
+/// A gizmo handle.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Handle {
+    /// The ray's origin, moved in the view's plane.
+    RayOrigin,
+    /// The ray's direction: the handle sits one gizmo length along it.
+    RayDirection,
+    /// The query point, moved in the view's plane.
+    Point,
+    /// An axis arrow (0 = x, 1 = y, 2 = z) from `base`: drags along that axis.
+    Axis(usize, Vec3),
+}
+
+/// What a click asked for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Asked {
+    /// A new ray was cast.
+    Ray,
+    /// The point was placed.
+    Point,
+}
+
+/// How close to a handle (in points) a press grabs it.
+const GRAB_RADIUS: f32 = 10.0;
+
+/// The gizmo's length: a fraction of the mesh's size.
+fn gizmo_length(lab: &Lab3d) -> f32 {
+    lab.mesh.as_ref().map_or(1.0, |m| m.size() * 0.15)
+}
+
+/// The handles shown, with where each is.
+pub fn handles(lab: &Lab3d) -> Vec<(Handle, Vec3)> {
+    let len = gizmo_length(lab);
+    let mut out = Vec::new();
+    let base = match lab.tool {
+        Tool3d::Ray => lab.ray.map(|ray| {
+            let origin = ray.origin();
+            out.push((Handle::RayOrigin, origin));
+            let dir = ray.dir().normalize_or_zero();
+            out.push((Handle::RayDirection, origin + dir * len));
+            origin
+        }),
+        Tool3d::Point => lab.point.inspect(|&p| out.push((Handle::Point, p))),
+    };
+    if let Some(base) = base {
+        for (axis, unit) in [Vec3::X, Vec3::Y, Vec3::Z].into_iter().enumerate() {
+            out.push((Handle::Axis(axis, base), base + unit * len * 0.7));
+        }
+    }
+    out
+}
+
+/// A point of the view in the viewport's pixels (top-left origin).
+fn local(rect: Rect, p: Pos2) -> Vec2 {
+    Vec2::new(p.x - rect.min.x, p.y - rect.min.y)
+}
+
+/// Handles the pointer over the view at `rect`; what a click asked for.
+pub fn handle_input(lab: &mut Lab3d, response: &Response, rect: Rect) -> Option<Asked> {
+    let size = Vec2::new(rect.width(), rect.height());
+    if response.hovered() {
+        let scroll = response.ctx.input(|i| i.smooth_scroll_delta.y);
+        if scroll != 0.0 {
+            lab.camera.zoom((-scroll * 0.002).exp());
+        }
+    }
+    if response.drag_started()
+        && let Some(pos) = response.interact_pointer_pos()
+    {
+        let pointer = local(rect, pos);
+        lab.dragging = handles(lab)
+            .into_iter()
+            .filter_map(|(h, at)| {
+                let screen = lab.camera.project(at, size)?;
+                let d = screen.distance(pointer);
+                (d <= GRAB_RADIUS).then_some((h, d))
+            })
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+            .map(|(h, _)| h);
+    }
+    if response.dragged() {
+        let delta = response.drag_delta();
+        let delta = Vec2::new(delta.x, delta.y);
+        let (shift, secondary) = response.ctx.input(|i| {
+            (
+                i.modifiers.shift,
+                i.pointer.secondary_down() || i.pointer.middle_down(),
+            )
+        });
+        match lab.dragging {
+            Some(handle) => drag_handle(lab, handle, delta, size),
+            None if shift || secondary => lab.camera.pan(delta, size.y),
+            None => lab.camera.orbit(delta),
+        }
+    }
+    if response.drag_stopped() {
+        lab.dragging = None;
+    }
+    if response.clicked()
+        && let Some(pos) = response.interact_pointer_pos()
+    {
+        return click(lab, local(rect, pos), size);
+    }
+    None
+}
+
+/// A click: casts a ray from the camera, or puts the point where the click meets the mesh.
+fn click(lab: &mut Lab3d, pixel: Vec2, size: Vec2) -> Option<Asked> {
+    let ray = lab.camera.ray_through(pixel, size)?;
+    let ray = Ray3::new(ray.origin(), ray.dir().normalize_or_zero()).ok()?;
+    match lab.tool {
+        Tool3d::Ray => {
+            lab.ray = Some(ray);
+            Some(Asked::Ray)
+        }
+        Tool3d::Point => {
+            let built = lab.built.as_ref()?;
+            let size = lab.mesh.as_ref().map_or(1.0, super::mesh::Mesh3d::size);
+            let hit = built.structure.ray_first_hit(&ray, &mut ()).answer;
+            // Just off the surface, on the camera's side, so the distance is not zero.
+            let at = match hit {
+                Some(h) => ray.at(h.t) - ray.dir() * size * 0.03,
+                None => lab.camera.target,
+            };
+            lab.point = Some(at);
+            Some(Asked::Point)
+        }
+    }
+}
+
+/// Moves what `handle` holds by a drag of `delta` points.
+fn drag_handle(lab: &mut Lab3d, handle: Handle, delta: Vec2, size: Vec2) {
+    let camera = lab.camera;
+    let basis = camera.basis();
+    // World units per point at a given point's depth.
+    let per_point = |at: Vec3| {
+        let depth = (at - camera.eye()).dot(basis.forward).max(1e-6);
+        2.0 * depth * (camera.fov_y * 0.5).tan() / size.y.max(1.0)
+    };
+    let in_plane = |at: Vec3| at + (basis.right * delta.x - basis.up * delta.y) * per_point(at);
+    let moved = |at: Vec3, axis: usize| {
+        let mut unit = Vec3::ZERO;
+        unit[axis] = 1.0;
+        let len = gizmo_length(lab);
+        let (Some(a), Some(b)) = (
+            camera.project(at, size),
+            camera.project(at + unit * len, size),
+        ) else {
+            return at;
+        };
+        let screen = b - a;
+        if screen.length_squared() < 1.0 {
+            return at;
+        }
+        at + unit * (delta.dot(screen) / screen.length_squared() * len)
+    };
+    match (handle, lab.tool) {
+        (Handle::RayOrigin, _) => {
+            if let Some(ray) = lab.ray {
+                lab.ray = Ray3::new(in_plane(ray.origin()), ray.dir())
+                    .ok()
+                    .or(lab.ray);
+            }
+        }
+        (Handle::RayDirection, _) => {
+            if let Some(ray) = lab.ray {
+                let tip = ray.origin() + ray.dir().normalize_or_zero() * gizmo_length(lab);
+                let dir = (in_plane(tip) - ray.origin()).normalize_or_zero();
+                lab.ray = Ray3::new(ray.origin(), dir).ok().or(lab.ray);
+            }
+        }
+        (Handle::Point, _) => lab.point = lab.point.map(in_plane),
+        (Handle::Axis(axis, _), Tool3d::Ray) => {
+            if let Some(ray) = lab.ray {
+                lab.ray = Ray3::new(moved(ray.origin(), axis), ray.dir())
+                    .ok()
+                    .or(lab.ray);
+            }
+        }
+        (Handle::Axis(axis, _), Tool3d::Point) => {
+            lab.point = lab.point.map(|p| moved(p, axis));
+        }
+    }
+}

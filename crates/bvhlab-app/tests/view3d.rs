@@ -1,0 +1,269 @@
+//! The 3D half of the lab, driven headless as a student drives it (no GPU here: the view's
+//! drawing is tested on lavapipe in `render3d.rs`; this checks what the view does).
+
+mod common;
+
+use std::sync::Arc;
+
+use bvhlab::glam::Vec2;
+use bvhlab::{BruteForce, Event, SpatialIndex};
+use bvhlab_app::LabApp;
+use bvhlab_app::app::Dimension;
+use bvhlab_app::lab3d::mesh::{Mesh3d, MeshSource};
+use bvhlab_app::pseudocode::{Task, line_of};
+use bvhlab_app::structures::StructureKind;
+use common::{click, click_at, lab, press, settle};
+use egui::Key;
+use egui_kittest::Harness;
+
+/// Frames run until the 3D view has built its structure (or a limit, which fails).
+fn until_built(h: &mut Harness<'_, LabApp>) -> usize {
+    for frame in 0..2_000 {
+        let lab = &h.state().lab3d;
+        if lab.built.is_some() && !lab.busy() {
+            settle(h);
+            return frame;
+        }
+        h.step();
+    }
+    panic!("the structure was not built in 2,000 frames");
+}
+
+/// The lab switched to 3D, its default mesh loaded and built.
+fn lab_3d() -> Harness<'static, LabApp> {
+    let mut h = lab();
+    click(&mut h, "3D: meshes");
+    assert_eq!(h.state().dimension, Dimension::Three);
+    until_built(&mut h);
+    h
+}
+
+/// Clicks the middle of the 3D view; returns the pixel's position in the view.
+fn click_view_middle(h: &mut Harness<'_, LabApp>) -> (Vec2, Vec2) {
+    let rect = h.state().lab3d.view_rect;
+    assert!(rect.is_positive(), "the view has an area: {rect:?}");
+    let at = rect.center() + egui::vec2(3.0, -7.0);
+    click_at(h, at);
+    (
+        Vec2::new(at.x - rect.min.x, at.y - rect.min.y),
+        Vec2::new(rect.width(), rect.height()),
+    )
+}
+
+#[test]
+fn a_click_on_the_bunny_casts_the_camera_ray_and_the_hit_is_brute_forces() {
+    let mut h = lab_3d();
+    let (pixel, size) = click_view_middle(&mut h);
+    let lab = &h.state().lab3d;
+    let expected = lab
+        .camera
+        .ray_through(pixel, size)
+        .expect("a finite camera");
+    let ray = lab.ray.expect("the click cast a ray");
+    assert_eq!(ray.origin(), expected.origin(), "from the eye");
+    let cos = ray.dir().normalize().dot(expected.dir().normalize());
+    assert!(cos > 1.0 - 1e-6, "through the clicked pixel");
+    let mesh = &lab.mesh.as_ref().expect("the bunny").mesh;
+    let brute = BruteForce::build(mesh.triangles()).ray_first_hit(&ray, f32::INFINITY);
+    let report = &h.state().report;
+    let three = report.three.as_ref().expect("the 3D report");
+    let hit = three
+        .hit
+        .as_ref()
+        .expect("the middle of the view is on the bunny");
+    let brute = brute.expect("brute force hits too");
+    assert_eq!(hit.triangle, brute.prim);
+    assert_eq!(hit.t, brute.t);
+    assert_eq!(three.agrees, Some(true));
+    assert!(
+        three
+            .cost
+            .is_some_and(|c| c[2] < three.brute_force_tests.unwrap_or(0))
+    );
+}
+
+/// Nodes, bound tests and primitive tests in `events`, counted here.
+fn count(events: &[Event<bvhlab::glam::Vec3>]) -> [u64; 3] {
+    let mut c = [0; 3];
+    for e in events {
+        match e {
+            Event::EnterNode { .. } | Event::CellEnter { .. } => c[0] += 1,
+            Event::RayBoundTest { .. }
+            | Event::DistanceBoundTest { .. }
+            | Event::PlaneCrossed { .. } => c[1] += 1,
+            Event::PrimitiveTest {
+                result: bvhlab::structure::PrimitiveResult::AlreadyTested,
+                ..
+            } => {}
+            Event::PrimitiveTest { .. } => c[2] += 1,
+            _ => {}
+        }
+    }
+    c
+}
+
+#[test]
+fn stepping_in_3d_marks_the_lines_and_counts_as_in_2d() {
+    let mut h = lab_3d();
+    click_view_middle(&mut h);
+    press(&mut h, Key::Home);
+    let rec = h.state().lab3d.recorded().expect("recorded").clone();
+    assert!(rec.events.len() > 3);
+    let kind = h.state().lab3d.settings.kind;
+    for step in 0..=rec.events.len() {
+        let report = h.state().report.playback.first().expect("one lane").clone();
+        assert_eq!(report.step, step);
+        assert_eq!(report.steps, rec.events.len());
+        let line = step
+            .checked_sub(1)
+            .and_then(|i| line_of(kind, Task::FirstHit, rec.question.variant, &rec.events, i));
+        assert_eq!(report.line, line.map(|l| l + 1), "step {step}");
+        assert_eq!(report.so_far, count(&rec.events[..step]), "step {step}");
+        if step < rec.events.len() {
+            press(&mut h, Key::Period);
+        }
+    }
+    let report = &h.state().report.playback[0];
+    assert_eq!(
+        report.total,
+        [
+            rec.cost.nodes_visited,
+            rec.cost.bound_tests,
+            rec.cost.prim_tests
+        ]
+    );
+    assert_eq!(report.so_far, report.total);
+    // The panel shows the listing with one line marked.
+    let marked = common::labels(&h)
+        .into_iter()
+        .filter(|l| l.get(2..3) == Some(">"))
+        .count();
+    assert_eq!(marked, 1);
+}
+
+#[test]
+fn every_structure_answers_the_click_and_the_point_like_brute_force() {
+    let mut h = lab_3d();
+    click_view_middle(&mut h);
+    for kind in StructureKind::ALL {
+        h.state_mut().lab3d.settings.kind = kind;
+        until_built(&mut h);
+        for task in [Task::FirstHit, Task::Nearest, Task::Range, Task::AllHits] {
+            h.state_mut().task = task;
+            settle(&mut h);
+            let rec =
+                h.state().lab3d.recorded().unwrap_or_else(|| {
+                    panic!("{kind:?} {task:?}: {:?}", h.state().lab3d.recording)
+                });
+            assert!(rec.agrees(), "{kind:?} {task:?}");
+        }
+        h.state_mut().task = Task::FirstHit;
+    }
+}
+
+#[test]
+fn stepping_through_a_build_of_the_bunny_makes_every_node() {
+    let mut h = lab_3d();
+    h.state_mut().task = Task::Build;
+    settle(&mut h);
+    press(&mut h, Key::End);
+    let lab = &h.state().lab3d;
+    let snap = lab.snapshot.as_ref().expect("a snapshot");
+    let built = lab.built.as_ref().expect("built");
+    assert_eq!(snap.existing.len(), built.node_count);
+    assert!(
+        snap.existing.iter().all(|&e| e),
+        "every node made by the end"
+    );
+    press(&mut h, Key::Home);
+    let snap = h.state().lab3d.snapshot.as_ref().expect("a snapshot");
+    assert!(snap.existing.iter().all(|&e| !e), "none at step 0");
+}
+
+#[test]
+fn a_million_triangles_build_over_many_frames_with_rising_progress() {
+    let mut h = lab_3d();
+    h.state_mut()
+        .lab3d
+        .open(MeshSource::Builtin("lumpy-sphere".to_owned()));
+    let mut progress = Vec::new();
+    for _ in 0..4_000 {
+        h.step();
+        let lab = &h.state().lab3d;
+        if let Some(job) = &lab.job {
+            progress.push(job.fraction());
+        }
+        if lab.built.is_some() && !lab.busy() {
+            break;
+        }
+    }
+    let lab = &h.state().lab3d;
+    assert_eq!(
+        lab.mesh.as_ref().map(Mesh3d::triangle_count),
+        Some(1_000_000)
+    );
+    let built = lab.built.as_ref().expect("built");
+    assert!(built.frames > 2, "sliced over frames: {}", built.frames);
+    assert!(progress.len() > 2, "progress was shown: {progress:?}");
+    assert!(progress.windows(2).all(|w| w[0] <= w[1]), "{progress:?}");
+    assert!(built.stats.nodes > 100_000);
+    // A structure that is not offered at this size says so, and keeps the mesh.
+    h.state_mut().lab3d.settings.kind = StructureKind::Bsp;
+    settle(&mut h);
+    let lab = &h.state().lab3d;
+    let message = lab.message.clone().unwrap_or_default();
+    assert!(message.contains("offered up to"), "{message}");
+    assert_eq!(
+        lab.mesh.as_ref().map(Mesh3d::triangle_count),
+        Some(1_000_000)
+    );
+}
+
+#[test]
+fn a_broken_mesh_file_is_refused_and_the_open_mesh_stays() {
+    #[derive(Debug)]
+    struct Dropped(std::path::PathBuf);
+    impl egui::DroppedFile for Dropped {
+        fn path(&self) -> &std::path::Path {
+            &self.0
+        }
+        fn bytes(&self) -> Result<Vec<u8>, String> {
+            std::fs::read(&self.0).map_err(|e| e.to_string())
+        }
+    }
+    let mut h = lab_3d();
+    let before = h
+        .state()
+        .lab3d
+        .mesh
+        .as_ref()
+        .map(|m| (m.name.clone(), m.revision));
+    let dir = std::env::temp_dir().join(format!("bvhlab-view3d-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let bad = dir.join("broken.stl");
+    // A binary STL header that promises 1,200 triangles and holds none.
+    let mut bytes = vec![0u8; 80];
+    bytes.extend_from_slice(&1200u32.to_le_bytes());
+    std::fs::write(&bad, &bytes).expect("write");
+    h.input_mut().dropped_files.push(Arc::new(Dropped(bad)));
+    h.run();
+    settle(&mut h);
+    let lab = &h.state().lab3d;
+    let message = lab.message.clone().unwrap_or_default();
+    assert!(message.starts_with("broken.stl"), "{message}");
+    assert!(message.contains("stays open"), "{message}");
+    assert_eq!(
+        lab.mesh.as_ref().map(|m| (m.name.clone(), m.revision)),
+        before
+    );
+    // A good file in another format opens.
+    let good = dir.join("tri.obj");
+    std::fs::write(&good, b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").expect("write");
+    h.input_mut().dropped_files.push(Arc::new(Dropped(good)));
+    h.run();
+    until_built(&mut h);
+    let lab = &h.state().lab3d;
+    assert_eq!(lab.mesh.as_ref().map(|m| m.name.as_str()), Some("tri.obj"));
+    assert_eq!(lab.built.as_ref().map(|b| b.stats.primitives), Some(1));
+    std::fs::remove_dir_all(&dir).ok();
+}
