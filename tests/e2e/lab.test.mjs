@@ -17,9 +17,18 @@ import { dirname, join, relative, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { deflateSync } from 'node:zlib';
 import { chromium } from 'playwright-core';
-import pngjs from 'pngjs';
-
-const { PNG } = pngjs;
+import {
+  BASE_ARGS,
+  WEBGPU_ARGS,
+  Failure,
+  check,
+  colourDistance,
+  decode,
+  frames,
+  rgb,
+  seconds,
+  waitForReport,
+} from './browser.mjs';
 
 const url = process.argv[2] ?? process.env.LAB_URL;
 if (!url) {
@@ -36,26 +45,6 @@ const READY_TIMEOUT_MS = 60_000;
 const QUERY_TIMEOUT_MS = 30_000;
 const VIEWPORT = { width: 1600, height: 900 };
 
-// Flags from shared/SETUP.md. The background-networking ones keep Chromium from calling home
-// (the network is closed); Playwright refuses --user-data-dir, hence launchPersistentContext.
-const BASE_ARGS = [
-  '--no-sandbox',
-  '--disable-quic',
-  '--no-first-run',
-  '--disable-background-networking',
-  '--disable-component-update',
-  '--disable-sync',
-];
-// WebGPU in headless Chromium without a GPU: SwiftShader's Vulkan under Dawn. With
-// --enable-unsafe-webgpu alone the adapter exists but nothing is drawn. --enable-features
-// replaces Playwright's own list, so its names are kept.
-const WEBGPU_ARGS = [
-  '--enable-unsafe-webgpu',
-  '--use-angle=swiftshader',
-  '--use-vulkan=swiftshader',
-  '--enable-features=Vulkan,CDPScreenshotNewSurface,SkipListAccountsWithoutGaiaCookies',
-];
-
 const RUNS = [
   { renderer: 'WebGPU', label: 'WebGPU', args: [...BASE_ARGS, ...WEBGPU_ARGS] },
   // Plain headless has no WebGPU adapter: the app falls back to WebGL2 by itself.
@@ -64,24 +53,7 @@ const RUNS = [
   { renderer: 'WebGPU', label: 'WebGPU-10k', search: '?preset=10k', primitives: 10000, args: [...BASE_ARGS, ...WEBGPU_ARGS] },
 ];
 
-class Failure extends Error {}
-
-function check(condition, message) {
-  if (!condition) throw new Failure(message);
-}
-
-const seconds = (ms) => `${(ms / 1000).toFixed(1)} s`;
 const show = (path) => relative(repo, path);
-
-function decode(buffer) {
-  return PNG.sync.read(buffer);
-}
-
-// The RGB colour at (x, y) of a decoded screenshot, as one number.
-function rgb(png, x, y) {
-  const i = (png.width * y + x) * 4;
-  return (png.data[i] << 16) | (png.data[i + 1] << 8) | png.data[i + 2];
-}
 
 // The integer pixel rectangle of the report's drawing area, clipped to the screenshot.
 function pixelRect(png, [x0, y0, x1, y1]) {
@@ -107,15 +79,6 @@ function colourStats(png, rect) {
   return { distinct: counts.size, dominantShare: top / total };
 }
 
-// How far two colours are apart (largest channel difference).
-function colourDistance(a, b) {
-  return Math.max(
-    Math.abs(((a >> 16) & 255) - ((b >> 16) & 255)),
-    Math.abs(((a >> 8) & 255) - ((b >> 8) & 255)),
-    Math.abs((a & 255) - (b & 255)),
-  );
-}
-
 // Samples the segment from `a` to `b` every 3 pixels; a sample counts as changed when some pixel
 // within 2 pixels of it differs clearly between the two screenshots.
 function changesAlong(before, after, a, b) {
@@ -137,57 +100,6 @@ function changesAlong(before, after, a, b) {
     if (hit) changed++;
   }
   return { samples: samples + 1, changed };
-}
-
-// The lab's report, or an error text when the page says the lab could not start.
-async function readReport(page) {
-  return page.evaluate(() => {
-    const loading = document.getElementById('status');
-    if (loading && loading.textContent.startsWith('The lab could not start')) {
-      return { failed: loading.textContent };
-    }
-    const text = document.getElementById('lab-status')?.getAttribute('data-report');
-    if (!text) return null;
-    try {
-      return { report: JSON.parse(text), text: document.getElementById('lab-status').textContent };
-    } catch (error) {
-      return { invalid: `${error.message}: ${text.slice(0, 200)}` };
-    }
-  });
-}
-
-// Polls the report until `accept(report)` holds; returns it, or throws with the last one seen.
-async function waitForReport(page, accept, timeoutMs, what) {
-  const start = Date.now();
-  let last = null;
-  for (;;) {
-    const state = await readReport(page);
-    if (state?.failed) throw new Failure(`the page says: ${state.failed}`);
-    if (state?.invalid) throw new Failure(`data-report is not JSON: ${state.invalid}`);
-    if (state?.report) {
-      last = state.report;
-      if (accept(last)) return { report: last, text: state.text };
-    }
-    if (Date.now() - start > timeoutMs) {
-      throw new Failure(
-        `no ${what} after ${seconds(timeoutMs)}; last report: ${last ? JSON.stringify(last) : 'none'}`,
-      );
-    }
-    await page.waitForTimeout(100);
-  }
-}
-
-// Resolves after the page has shown `n` more animation frames.
-async function frames(page, n) {
-  await page.evaluate(
-    (count) =>
-      new Promise((done) => {
-        let left = count;
-        const step = () => (--left <= 0 ? done() : requestAnimationFrame(step));
-        requestAnimationFrame(step);
-      }),
-    n,
-  );
 }
 
 async function screenshot(page, name) {

@@ -56,3 +56,4 @@ fi
 echo "Testing $url in headless Chromium ($("${CHROMIUM:-/usr/bin/chromium}" --version 2>/dev/null || echo '?'))"
 
 node tests/e2e/lab.test.mjs "$url"
+node tests/e2e/view3d.test.mjs "$url"

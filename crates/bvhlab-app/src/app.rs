@@ -332,6 +332,10 @@ impl LabApp {
                 p.toggle(len);
             }
         });
+        // H shows or hides the 3D view's heat map.
+        if self.dimension == Dimension::Three && ui.input(|i| i.key_pressed(egui::Key::H)) {
+            self.lab3d.heat.on = !self.lab3d.heat.on;
+        }
     }
 
     /// The longest recording's length: the last step of playback.

@@ -102,7 +102,18 @@ fn start_state() -> (LabApp, Option<String>, bool) {
         .flatten()
         .and_then(|s| s.get_item(STORAGE_KEY).ok().flatten());
     let fragment = (!hash.is_empty()).then_some(hash.as_str());
-    let (app, message) = crate::persist::startup(fragment, preset.as_deref(), saved.as_deref());
+    let (mut app, message) =
+        crate::persist::startup(fragment, preset.as_deref(), saved.as_deref());
+    // `?mesh=SLUG` opens the 3D view on a built-in mesh (`?mesh=bunny`).
+    let mesh = search
+        .trim_start_matches('?')
+        .split('&')
+        .find_map(|pair| pair.strip_prefix("mesh="));
+    if let Some(slug) = mesh {
+        app.dimension = crate::app::Dimension::Three;
+        app.lab3d
+            .open(crate::lab3d::mesh::MeshSource::Builtin(slug.to_owned()));
+    }
     if let Some(m) = &message {
         log::warn!("{m}");
     }

@@ -17,6 +17,9 @@ use crate::structures::Built;
 use crate::view3d::camera::OrbitCamera;
 use crate::view3d::heatmap::{CpuHeatMap, GpuHeatMap, Metric, gpu_heatmap_supported, legend};
 
+/// Frames spent reading the GPU image's largest count back after a trace.
+const SETTLE_FRAMES: u32 = 30;
+
 /// Milliseconds of CPU tracing per frame.
 const CPU_BUDGET_MS: f64 = 15.0;
 
@@ -57,6 +60,10 @@ pub struct Heat {
     gpu_tree: Option<(u64, crate::structures::BuildSettings)>,
     gpu_texture: Option<egui::TextureId>,
     gpu_error: Option<String>,
+    /// The GPU image's largest count, once read back (for the legend and the report).
+    gpu_max: Option<u32>,
+    /// Frames left to read the largest count back after a trace.
+    settle_frames: u32,
     /// Whether the image shown came from the GPU.
     shown_gpu: bool,
 }
@@ -71,8 +78,8 @@ impl Lab3d {
         Some(if heat.shown_gpu {
             HeatReport {
                 device: "gpu".to_owned(),
-                progress: 1.0,
-                max: 0,
+                progress: if heat.gpu_max.is_some() { 1.0 } else { 0.0 },
+                max: heat.gpu_max.unwrap_or(0),
             }
         } else {
             HeatReport {
@@ -106,9 +113,8 @@ pub fn section(app: &mut LabApp, ui: &mut egui::Ui) {
     }
     if heat.shown_gpu {
         ui.label("traced on the GPU (WGSL compute shader)");
-        let top = heat.gpu.as_mut().and_then(GpuHeatMap::largest_count);
-        if let Some(top) = top {
-            legend(ui, top, heat.metric);
+        if let Some(top) = heat.gpu_max {
+            legend(ui, top.max(1), heat.metric);
         }
     } else if let Some(cpu) = &heat.cpu {
         ui.label(format!(
@@ -161,8 +167,22 @@ pub fn overlay(app: &mut LabApp, ui: &mut egui::Ui, rect: egui::Rect) {
         {
             heat.shown_gpu = true;
             ui.painter().image(id, rect, full_uv(), Color32::WHITE);
-            if let Some(gpu) = &heat.gpu {
+            if let Some(gpu) = &mut heat.gpu {
                 gpu.after_submit();
+                if fresh {
+                    heat.gpu_max = None;
+                    heat.settle_frames = SETTLE_FRAMES;
+                }
+                // The largest count is read back a few frames after the image (the last
+                // read-back may still be the previous image's): keep drawing a little while,
+                // reading it, for the legend.
+                if heat.settle_frames > 0 {
+                    heat.settle_frames -= 1;
+                    if !fresh {
+                        heat.gpu_max = gpu.largest_count().or(heat.gpu_max);
+                    }
+                    ui.ctx().request_repaint();
+                }
             }
             return;
         }
