@@ -269,7 +269,7 @@ impl LabApp {
     pub fn refresh(&mut self) {
         if self.dimension == Dimension::Three {
             let question = self.question_3d();
-            if self.lab3d.refresh(&question) {
+            if self.lab3d.refresh(&question, self.clock.median_ms()) {
                 let len = self.steps();
                 self.playback.fit(len);
             }

@@ -142,6 +142,17 @@ impl Default for Lab3d {
 /// Milliseconds of build work per frame: enough to finish a small mesh at once, little
 /// enough that the page stays responsive during a big one.
 const BUILD_BUDGET_MS: f64 = 25.0;
+/// The most build work per frame when frames are slow anyway (software rendering of a big
+/// mesh takes hundreds of milliseconds a frame): half the frame time, up to this.
+const SLOW_FRAME_BUILD_BUDGET_MS: f64 = 250.0;
+
+/// The build work to do this frame, given the median frame interval: 25 ms, or half a slow
+/// frame, so that a build keeps pace with a view that takes long to draw.
+pub fn build_budget_ms(frame_ms: Option<f64>) -> f64 {
+    frame_ms.map_or(BUILD_BUDGET_MS, |ms| {
+        (ms * 0.5).clamp(BUILD_BUDGET_MS, SLOW_FRAME_BUILD_BUDGET_MS)
+    })
+}
 
 impl Lab3d {
     /// Loads `source` on the next frame.
@@ -154,13 +165,14 @@ impl Lab3d {
         self.pending.is_some() || self.job.is_some()
     }
 
-    /// Loads a pending mesh, advances a build, re-records the question when it changed and
-    /// brings the snapshot to the playback step. Returns whether the recording changed.
-    pub fn refresh(&mut self, question: &Question<Vec3>) -> bool {
+    /// Loads a pending mesh, advances a build (for [`build_budget_ms`] of the median frame
+    /// interval `frame_ms`), re-records the question when it changed and brings the snapshot
+    /// to the playback step. Returns whether the recording changed.
+    pub fn refresh(&mut self, question: &Question<Vec3>, frame_ms: Option<f64>) -> bool {
         if let Some(source) = self.pending.take() {
             self.load(&source);
         }
-        self.advance_build();
+        self.advance_build(build_budget_ms(frame_ms));
         let Some(mesh) = &self.mesh else {
             return false;
         };
@@ -206,7 +218,7 @@ impl Lab3d {
 
     /// Starts a build when the mesh or settings changed, and gives a build under way this
     /// frame's time.
-    fn advance_build(&mut self) {
+    fn advance_build(&mut self, budget_ms: f64) {
         let Some(mesh) = &self.mesh else { return };
         let current = |s: &BuildSettings, r: u64| *s == self.settings && r == mesh.revision;
         let built_ok = self
@@ -229,7 +241,7 @@ impl Lab3d {
             }
         }
         if let Some(job) = &mut self.job
-            && let Some(built) = job.run(mesh, BUILD_BUDGET_MS)
+            && let Some(built) = job.run(mesh, budget_ms)
         {
             self.built = Some(built);
             self.job = None;
@@ -294,4 +306,17 @@ fn record(
         ));
     }
     Recording::record_on(built.subject(mesh), question)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn slow_frames_give_the_build_more_time_up_to_a_cap() {
+        assert_eq!(build_budget_ms(None), BUILD_BUDGET_MS);
+        assert_eq!(build_budget_ms(Some(16.0)), BUILD_BUDGET_MS);
+        assert_eq!(build_budget_ms(Some(300.0)), 150.0);
+        assert_eq!(build_budget_ms(Some(5_000.0)), SLOW_FRAME_BUILD_BUDGET_MS);
+    }
 }
