@@ -102,8 +102,7 @@ fn start_state() -> (LabApp, Option<String>, bool) {
         .flatten()
         .and_then(|s| s.get_item(STORAGE_KEY).ok().flatten());
     let fragment = (!hash.is_empty()).then_some(hash.as_str());
-    let (mut app, message) =
-        crate::persist::startup(fragment, preset.as_deref(), saved.as_deref());
+    let (mut app, message) = crate::persist::startup(fragment, preset.as_deref(), saved.as_deref());
     // `?mesh=SLUG` opens the 3D view on a built-in mesh (`?mesh=bunny`).
     let mesh = search
         .trim_start_matches('?')

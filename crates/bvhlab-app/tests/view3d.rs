@@ -9,6 +9,7 @@ use bvhlab::glam::Vec2;
 use bvhlab::{BruteForce, Event, SpatialIndex};
 use bvhlab_app::LabApp;
 use bvhlab_app::app::Dimension;
+use bvhlab_app::lab3d::input::{Handle, handles};
 use bvhlab_app::lab3d::mesh::{Mesh3d, MeshSource};
 use bvhlab_app::pseudocode::{Task, line_of};
 use bvhlab_app::structures::StructureKind;
@@ -266,4 +267,77 @@ fn a_broken_mesh_file_is_refused_and_the_open_mesh_stays() {
     assert_eq!(lab.mesh.as_ref().map(|m| m.name.as_str()), Some("tri.obj"));
     assert_eq!(lab.built.as_ref().map(|b| b.stats.primitives), Some(1));
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A primary-button drag in the 3D view from `from` to `to`, in eight moves.
+fn drag_3d(h: &mut Harness<'_, LabApp>, from: egui::Pos2, to: egui::Pos2) {
+    h.hover_at(from);
+    h.step();
+    h.drag_at(from);
+    h.step();
+    for i in 1..=8 {
+        h.hover_at(from.lerp(to, i as f32 / 8.0));
+        h.step();
+    }
+    h.drop_at(to);
+    settle(h);
+}
+
+/// Where a handle is on screen.
+fn handle_on_screen(h: &Harness<'_, LabApp>, which: Handle) -> egui::Pos2 {
+    let lab = &h.state().lab3d;
+    let rect = lab.view_rect;
+    let (_, at) = handles(lab)
+        .into_iter()
+        .find(|(handle, _)| {
+            std::mem::discriminant(handle) == std::mem::discriminant(&which)
+                && match (handle, which) {
+                    (Handle::Axis(a, _), Handle::Axis(b, _)) => *a == b,
+                    _ => true,
+                }
+        })
+        .expect("the handle is shown");
+    let p = lab
+        .camera
+        .project(at, Vec2::new(rect.width(), rect.height()))
+        .expect("in front of the camera");
+    rect.min + egui::vec2(p.x, p.y)
+}
+
+#[test]
+fn the_gizmo_moves_the_point_along_an_axis_and_in_the_view_plane() {
+    let mut h = lab_3d();
+    click(&mut h, "places the point");
+    assert_eq!(h.state().task, Task::Nearest);
+    let before = h.state().lab3d.point.expect("a point is placed on load");
+    // The x arrow: dragging along its screen direction moves the point along x only.
+    let base = handle_on_screen(&h, Handle::Point);
+    let tip = handle_on_screen(&h, Handle::Axis(0, before));
+    let along = (tip - base).normalized() * 40.0;
+    let rect = h.state().lab3d.view_rect;
+    assert!(
+        rect.contains(base) && rect.contains(tip),
+        "the gizmo is in view: {base:?} {tip:?} in {rect:?}"
+    );
+    let camera = h.state().lab3d.camera;
+    drag_3d(&mut h, tip, tip + along);
+    assert_eq!(
+        h.state().lab3d.camera,
+        camera,
+        "a handle drag does not orbit"
+    );
+    let after = h.state().lab3d.point.expect("still placed");
+    assert!(after.x > before.x + 1e-3, "{before} -> {after}");
+    assert_eq!((after.y, after.z), (before.y, before.z));
+    // The centre dot: the point moves in the plane facing the camera.
+    let depth = |p: bvhlab::glam::Vec3| (p - camera.eye()).dot(camera.basis().forward);
+    let centre = handle_on_screen(&h, Handle::Point);
+    drag_3d(&mut h, centre, centre + egui::vec2(-30.0, 25.0));
+    let moved = h.state().lab3d.point.expect("still placed");
+    assert!((moved - after).length() > 1e-3);
+    assert!((depth(moved) - depth(after)).abs() < 1e-3 * depth(after).abs().max(1.0));
+    // The answer follows the point, and agrees with brute force.
+    let rec = h.state().lab3d.recorded().expect("recorded");
+    assert_eq!(rec.question.point, Some(moved));
+    assert!(rec.agrees());
 }

@@ -109,7 +109,12 @@ fn structure_level(lab: &Lab3d, built: &Built3d, build: Option<&Snapshot<Vec3>>,
     let (level, cut) = built.level(lab.display.depth, LEVEL_CAP);
     d.level_cut = cut;
     let color = rgba(colors::STRUCTURE, 0.55);
-    let plane = rgba(colors::SLAB_Y, 0.18);
+    // Planes fade as the level fills up, so the mesh still shows through a deep level.
+    let inner = level.iter().filter(|n| !n.splits.is_empty()).count().max(1);
+    let plane = rgba(
+        colors::SLAB_Y,
+        (0.18 * (4.0 / inner as f32).sqrt()).clamp(0.03, 0.18),
+    );
     for node in &level {
         // A build shows only the nodes made so far.
         if let Some(snap) = build

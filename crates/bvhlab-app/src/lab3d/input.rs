@@ -34,28 +34,42 @@ pub enum Asked {
 /// How close to a handle (in points) a press grabs it.
 const GRAB_RADIUS: f32 = 10.0;
 
-/// The gizmo's length: a fraction of the mesh's size.
-fn gizmo_length(lab: &Lab3d) -> f32 {
-    lab.mesh.as_ref().map_or(1.0, |m| m.size() * 0.15)
+/// The gizmo's length at `at`: a constant share of the view's size (as gizmos in modelling
+/// programs keep their size on screen), measured at the point's depth.
+fn gizmo_length(lab: &Lab3d, at: Vec3) -> f32 {
+    let camera = &lab.camera;
+    let depth = (at - camera.eye())
+        .dot(camera.basis().forward)
+        .max(camera.distance * 0.1);
+    // In a view narrower than tall, a share of its width.
+    let aspect = if lab.view_rect.is_positive() {
+        lab.view_rect.aspect_ratio().min(1.0)
+    } else {
+        1.0
+    };
+    depth * (camera.fov_y * 0.5).tan() * 0.3 * aspect
 }
 
 /// The handles shown, with where each is.
 pub fn handles(lab: &Lab3d) -> Vec<(Handle, Vec3)> {
-    let len = gizmo_length(lab);
     let mut out = Vec::new();
     let base = match lab.tool {
         Tool3d::Ray => lab.ray.map(|ray| {
             let origin = ray.origin();
             out.push((Handle::RayOrigin, origin));
             let dir = ray.dir().normalize_or_zero();
-            out.push((Handle::RayDirection, origin + dir * len));
+            out.push((
+                Handle::RayDirection,
+                origin + dir * gizmo_length(lab, origin),
+            ));
             origin
         }),
         Tool3d::Point => lab.point.inspect(|&p| out.push((Handle::Point, p))),
     };
     if let Some(base) = base {
+        let len = gizmo_length(lab, base) * 0.7;
         for (axis, unit) in [Vec3::X, Vec3::Y, Vec3::Z].into_iter().enumerate() {
-            out.push((Handle::Axis(axis, base), base + unit * len * 0.7));
+            out.push((Handle::Axis(axis, base), base + unit * len));
         }
     }
     out
@@ -75,8 +89,10 @@ pub fn handle_input(lab: &mut Lab3d, response: &Response, rect: Rect) -> Option<
             lab.camera.zoom((-scroll * 0.002).exp());
         }
     }
+    // A handle is grabbed where the press began, not where the drag was recognised.
+    let press = response.ctx.input(|i| i.pointer.press_origin());
     if response.drag_started()
-        && let Some(pos) = response.interact_pointer_pos()
+        && let Some(pos) = press.or_else(|| response.interact_pointer_pos())
     {
         let pointer = local(rect, pos);
         lab.dragging = handles(lab)
@@ -152,7 +168,7 @@ fn drag_handle(lab: &mut Lab3d, handle: Handle, delta: Vec2, size: Vec2) {
     let moved = |at: Vec3, axis: usize| {
         let mut unit = Vec3::ZERO;
         unit[axis] = 1.0;
-        let len = gizmo_length(lab);
+        let len = gizmo_length(lab, at);
         let (Some(a), Some(b)) = (
             camera.project(at, size),
             camera.project(at + unit * len, size),
@@ -175,7 +191,8 @@ fn drag_handle(lab: &mut Lab3d, handle: Handle, delta: Vec2, size: Vec2) {
         }
         (Handle::RayDirection, _) => {
             if let Some(ray) = lab.ray {
-                let tip = ray.origin() + ray.dir().normalize_or_zero() * gizmo_length(lab);
+                let tip =
+                    ray.origin() + ray.dir().normalize_or_zero() * gizmo_length(lab, ray.origin());
                 let dir = (in_plane(tip) - ray.origin()).normalize_or_zero();
                 lab.ray = Ray3::new(ray.origin(), dir).ok().or(lab.ray);
             }

@@ -104,6 +104,8 @@ pub struct Lab3d {
     pub view_rect: egui::Rect,
     /// The traversal-cost heat map, when on.
     pub heat: heat::Heat,
+    /// A mesh was loaded and the view has not framed it yet.
+    framing: bool,
     last_question: Option<Question<Vec3>>,
     revisions: u64,
 }
@@ -133,6 +135,7 @@ impl Default for Lab3d {
             dragging: None,
             view_rect: egui::Rect::NOTHING,
             heat: heat::Heat::default(),
+            framing: false,
             last_question: None,
             revisions: 0,
         }
@@ -192,13 +195,11 @@ impl Lab3d {
         self.revisions += 1;
         match mesh::load(source, self.revisions) {
             Ok(mesh) => {
-                self.camera.frame(&mesh.bounds());
-                let size = mesh.size();
-                self.radius = size * 0.1;
-                self.point = Some(mesh.bounds().max + Vec3::splat(size * 0.05));
-                // A first ray through the middle of the view, so the view has an answer
-                // to show straight away.
-                self.ray = Ray3::new(self.camera.eye(), self.camera.basis().forward).ok();
+                self.radius = mesh.size() * 0.1;
+                // The camera, ray and point are placed by the view, which knows its shape.
+                self.framing = true;
+                self.ray = None;
+                self.point = None;
                 self.message = (!mesh.warnings.is_empty()).then(|| mesh.warnings.join(" "));
                 self.mesh = Some(mesh);
                 self.built = None;
@@ -248,6 +249,21 @@ impl Lab3d {
             self.recording = None;
             self.snapshot = None;
         }
+    }
+
+    /// Frames the camera on the mesh for a view of `aspect` (width / height), and puts a
+    /// first ray through the middle of the view and the point beside the mesh, so the view
+    /// has answers to show straight away. Done once per loaded mesh, by the view.
+    pub fn place_defaults(&mut self, aspect: f32) {
+        let Some(mesh) = &self.mesh else { return };
+        if !std::mem::take(&mut self.framing) {
+            return;
+        }
+        self.camera.frame_in(&mesh.bounds(), aspect);
+        let size = mesh.size();
+        self.ray = Ray3::new(self.camera.eye(), self.camera.basis().forward).ok();
+        // Beside the mesh, to the right in the view, where the gizmo is on screen.
+        self.point = Some(self.camera.target + self.camera.basis().right * size * 0.35);
     }
 
     /// Events in the recording (0 without one).

@@ -19,6 +19,9 @@ pub fn view(app: &mut LabApp, ui: &mut egui::Ui) {
     let rect = ui.available_rect_before_wrap();
     let response = ui.allocate_rect(rect, Sense::click_and_drag());
     app.lab3d.view_rect = rect;
+    if rect.is_positive() {
+        app.lab3d.place_defaults(rect.aspect_ratio());
+    }
     if let Some(asked) = input::handle_input(&mut app.lab3d, &response, rect) {
         match asked {
             Asked::Ray => app.ask_about_ray(),

@@ -13,7 +13,7 @@ use super::listing::{Classify, Context, Listing, ROOT, Step, listing, primitive_
 use super::{Algorithm, Pseudocode, Task};
 
 static FIRST_HIT: Listing = listing!(
-    "Quadtree: first hit, front to back",
+    "Quadtree (octree in 3D): first hit, front to back",
     "Lecture §3: depth first; a ray interacts with a child when the child holds the ray \
      origin or the ray crosses into it; visit those children nearest first. A hit beyond \
      its leaf is not final: the search stops only at a cell that begins after the best hit \
@@ -21,7 +21,7 @@ static FIRST_HIT: Listing = listing!(
     [
         _          "intersect(quadtree, ray)         // the first hit",
         _          "    t = inf; hit = null          // the best hit so far",
-        TestRoot   "    [tEnter, tExit] = the ray inside the root square",
+        TestRoot   "    [tEnter, tExit] = the ray inside the root cell",
         MissRoot   "    if (the ray misses it) return null",
         _          "    stack = [(root, tEnter, tExit)]",
         _          "    while (stack not empty)",
@@ -34,7 +34,7 @@ static FIRST_HIT: Listing = listing!(
         HitBeyond  "                    if (tp > tExit) not final yet  // beyond the cell",
         NewBest    "                    if (tp < t) { t = tp; hit = p }",
         _          "        else",
-        _          "            for (c in the four children)",
+        _          "            for (c in the 4 children; 8 in 3D)",
         TestChild  "                [tc, tcExit] = the ray inside c",
         SkipChild  "                if (the ray misses c) skip c",
         Queue      "            push the non-empty ones, smallest tc on top",
@@ -43,12 +43,12 @@ static FIRST_HIT: Listing = listing!(
 );
 
 static ANY_HIT: Listing = listing!(
-    "Quadtree: any hit, front to back",
+    "Quadtree (octree in 3D): any hit, front to back",
     "The first-hit traversal without the best hit: it stops at the first hit found, which \
      is all a shadow ray needs.",
     [
         _          "anyHit(quadtree, ray, tMax)      // e.g. a shadow ray",
-        TestRoot   "    [tEnter, tExit] = the ray inside the root square",
+        TestRoot   "    [tEnter, tExit] = the ray inside the root cell",
         MissRoot   "    if (the ray misses it) return null",
         _          "    stack = [(root, tEnter, tExit)]",
         _          "    while (stack not empty)",
@@ -60,7 +60,7 @@ static ANY_HIT: Listing = listing!(
         TestPrim   "                if (p.intersect(ray, tp) && tp <= tMax)",
         _          "                    return p",
         _          "        else",
-        _          "            for (c in the four children)",
+        _          "            for (c in the 4 children; 8 in 3D)",
         TestChild  "                [tc, tcExit] = the ray inside c",
         SkipChild  "                if (the ray misses c) skip c",
         Queue      "            push the non-empty ones, smallest tc on top",
@@ -69,14 +69,14 @@ static ANY_HIT: Listing = listing!(
 );
 
 static ALL_HITS: Listing = listing!(
-    "Quadtree: all hits, front to back",
+    "Quadtree (octree in 3D): all hits, front to back",
     "The first-hit traversal without the best hit: every cell the ray reaches before tMax \
      is visited; the mailbox keeps a primitive listed in several cells from being reported \
      twice.",
     [
         _          "allHits(quadtree, ray, tMax)",
         _          "    hits = []",
-        TestRoot   "    [tEnter, tExit] = the ray inside the root square",
+        TestRoot   "    [tEnter, tExit] = the ray inside the root cell",
         MissRoot   "    if (the ray misses it) return hits",
         _          "    stack = [(root, tEnter, tExit)]",
         _          "    while (stack not empty)",
@@ -88,7 +88,7 @@ static ALL_HITS: Listing = listing!(
         TestPrim   "                if (p.intersect(ray, tp) && tp <= tMax)",
         _          "                    hits.add(p, tp)",
         _          "        else",
-        _          "            for (c in the four children)",
+        _          "            for (c in the 4 children; 8 in 3D)",
         TestChild  "                [tc, tcExit] = the ray inside c",
         SkipChild  "                if (the ray misses c) skip c",
         Queue      "            push the non-empty ones, smallest tc on top",
@@ -97,7 +97,7 @@ static ALL_HITS: Listing = listing!(
 );
 
 static NEAREST: Listing = listing!(
-    "Quadtree: k nearest to a point (best first)",
+    "Quadtree (octree in 3D): k nearest to a point (best first)",
     "Lecture §3: descend to the cell of the query point, then search outward, skipping cells \
      farther than the best so far. A priority queue takes cells nearest first (Hjaltason and \
      Samet, 1999), so the search ends at the first cell no nearer than currentMin.",
@@ -105,7 +105,7 @@ static NEAREST: Listing = listing!(
         _          "kNearest(quadtree, point, k)     // best first",
         _          "    best = []                    // the k nearest so far",
         _          "    currentMin = inf             // the k-th best distance",
-        TestRoot   "    d = distance(point, root square)",
+        TestRoot   "    d = distance(point, root cell)",
         _          "    queue = [(root, d)]          // a priority queue",
         _          "    while (queue not empty)",
         Enter      "        (cell, d) = queue.popNearest()",
@@ -117,8 +117,8 @@ static NEAREST: Listing = listing!(
         _          "                if (dp < currentMin)",
         NewBest    "                    add p to best (keep k), update currentMin",
         _          "        else",
-        _          "            for (c in the four children)",
-        TestChild  "                dc = distance(point, c's square)",
+        _          "            for (c in the 4 children; 8 in 3D)",
+        TestChild  "                dc = distance(point, c's cell)",
         _          "            for (c in the non-empty children, nearest first)",
         SkipChild  "                if (dc > currentMin) skip c  // nothing nearer",
         Queue      "                else queue.push(c, dc)",
@@ -127,7 +127,7 @@ static NEAREST: Listing = listing!(
 );
 
 static RANGE: Listing = listing!(
-    "Quadtree: primitives in a range",
+    "Quadtree (octree in 3D): primitives in a range",
     "Descend into every cell the region overlaps; in the leaves, test each primitive exactly, \
      once (a primitive listed in several cells is mailboxed).",
     [
@@ -136,7 +136,7 @@ static RANGE: Listing = listing!(
         _          "    stack = [root]",
         _          "    while (stack not empty)",
         Enter      "        cell = stack.pop()",
-        SkipPopped "        if (cell's square misses region) continue",
+        SkipPopped "        if (cell misses region) continue",
         _          "        if (cell is a leaf)",
         _          "            for (p in cell.primitives)",
         Mailbox    "                if (p was tested already) skip p  // mailbox",

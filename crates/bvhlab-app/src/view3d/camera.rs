@@ -100,6 +100,20 @@ impl OrbitCamera {
         camera
     }
 
+    /// As [`frame`](Self::frame), for a view `aspect` (width / height) wide: in a view
+    /// narrower than it is tall the horizontal field of view is the tighter one, and the
+    /// camera backs off until the sphere fits that too.
+    pub fn frame_in(&mut self, bounds: &Aabb3, aspect: f32) {
+        self.frame(bounds);
+        let half_h = (self.fov_y * 0.5).tan();
+        let half_w = half_h * aspect;
+        if aspect.is_finite() && aspect > 0.0 && half_w < half_h {
+            // The same sphere, fitted to the horizontal half-angle instead.
+            let ratio = (half_h.atan().sin()) / (half_w.atan().sin());
+            self.distance *= ratio;
+        }
+    }
+
     /// Moves the target to the centre of `bounds` and backs off until the box's bounding
     /// sphere fits the vertical field of view; keeps yaw and pitch.
     pub fn frame(&mut self, bounds: &Aabb3) {
@@ -315,6 +329,23 @@ mod tests {
                 "{d}: {}",
                 clip.z / clip.w
             );
+        }
+    }
+
+    #[test]
+    fn framing_a_tall_view_fits_the_box_across_too() {
+        let bounds = Aabb3::new(Vec3::splat(-1.0), Vec3::splat(1.0));
+        let mut camera = OrbitCamera::default();
+        camera.frame_in(&bounds, 0.5);
+        let size = Vec2::new(50.0, 100.0);
+        for i in 0..8 {
+            let corner = Vec3::new(
+                if i & 1 == 0 { -1.0 } else { 1.0 },
+                if i & 2 == 0 { -1.0 } else { 1.0 },
+                if i & 4 == 0 { -1.0 } else { 1.0 },
+            );
+            let p = camera.project(corner, size).expect("in front");
+            assert!((0.0..=50.0).contains(&p.x), "{p}");
         }
     }
 
