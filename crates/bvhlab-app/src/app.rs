@@ -225,18 +225,20 @@ impl LabApp {
         }
     }
 
-    /// The question playback steps through, from the task, the ray and the point.
-    pub fn question(&self) -> Question {
-        let variant = if crate::pseudocode::variants(self.lane.settings.kind, self.task)
-            .contains(&self.variant)
-        {
+    /// The chosen variant where `kind` has it for the task, else the full algorithm.
+    fn variant_for(&self, kind: crate::structures::StructureKind) -> Variant {
+        if crate::pseudocode::variants(kind, self.task).contains(&self.variant) {
             self.variant
         } else {
             Variant::Full
-        };
+        }
+    }
+
+    /// The question playback steps through, from the task, the ray and the point.
+    pub fn question(&self) -> Question {
         Question {
             task: self.task,
-            variant,
+            variant: self.variant_for(self.lane.settings.kind),
             ray: self.ray.and_then(|r| r.ray().ok()),
             point: self.point,
             k: self.k.max(1),
@@ -246,16 +248,9 @@ impl LabApp {
 
     /// The question the 3D view steps through.
     pub fn question_3d(&self) -> Question<bvhlab::glam::Vec3> {
-        let variant = if crate::pseudocode::variants(self.lab3d.settings.kind, self.task)
-            .contains(&self.variant)
-        {
-            self.variant
-        } else {
-            Variant::Full
-        };
         Question {
             task: self.task,
-            variant,
+            variant: self.variant_for(self.lab3d.settings.kind),
             ray: self.lab3d.ray,
             point: self.lab3d.point,
             k: self.k.max(1),

@@ -3,7 +3,6 @@
 //! current node and counters are checked against the core's own event stream, counted here
 //! independently; at the end the counters equal the core's cost and brute force's.
 
-use bvhlab::structure::PrimitiveResult;
 use bvhlab::{Event, NodeId};
 use bvhlab_app::LabApp;
 use bvhlab_app::playback::describe;
@@ -30,27 +29,6 @@ fn step_counters(h: &Harness<'_, LabApp>) -> Vec<(String, String, String, String
         }
     }
     rows
-}
-
-/// Counts the events of a prefix, as the lecture counts them: nodes entered (cells for a
-/// grid), bounding-volume or plane tests, exact primitive tests (mailboxed ones excluded).
-fn count(events: &[Event<bvhlab::glam::Vec2>]) -> [u64; 3] {
-    let mut c = [0; 3];
-    for e in events {
-        match e {
-            Event::EnterNode { .. } | Event::CellEnter { .. } => c[0] += 1,
-            Event::RayBoundTest { .. }
-            | Event::DistanceBoundTest { .. }
-            | Event::PlaneCrossed { .. } => {
-                c[1] += 1;
-            }
-            Event::PrimitiveTest { result, .. } if *result != PrimitiveResult::AlreadyTested => {
-                c[2] += 1;
-            }
-            _ => {}
-        }
-    }
-    c
 }
 
 /// The node an event names, as the canvas and the tree diagram highlight it.

@@ -6,14 +6,14 @@ mod common;
 use std::sync::Arc;
 
 use bvhlab::glam::Vec2;
-use bvhlab::{BruteForce, Event, SpatialIndex};
+use bvhlab::{BruteForce, SpatialIndex};
 use bvhlab_app::LabApp;
 use bvhlab_app::app::Dimension;
 use bvhlab_app::lab3d::input::{Handle, handles};
 use bvhlab_app::lab3d::mesh::{Mesh3d, MeshSource};
 use bvhlab_app::pseudocode::{Task, line_of};
 use bvhlab_app::structures::StructureKind;
-use common::{click, click_at, lab, press, settle};
+use common::{click, click_at, count, lab, press, settle};
 use egui::Key;
 use egui_kittest::Harness;
 
@@ -81,26 +81,6 @@ fn a_click_on_the_bunny_casts_the_camera_ray_and_the_hit_is_brute_forces() {
             .cost
             .is_some_and(|c| c[2] < three.brute_force_tests.unwrap_or(0))
     );
-}
-
-/// Nodes, bound tests and primitive tests in `events`, counted here.
-fn count(events: &[Event<bvhlab::glam::Vec3>]) -> [u64; 3] {
-    let mut c = [0; 3];
-    for e in events {
-        match e {
-            Event::EnterNode { .. } | Event::CellEnter { .. } => c[0] += 1,
-            Event::RayBoundTest { .. }
-            | Event::DistanceBoundTest { .. }
-            | Event::PlaneCrossed { .. } => c[1] += 1,
-            Event::PrimitiveTest {
-                result: bvhlab::structure::PrimitiveResult::AlreadyTested,
-                ..
-            } => {}
-            Event::PrimitiveTest { .. } => c[2] += 1,
-            _ => {}
-        }
-    }
-    c
 }
 
 #[test]

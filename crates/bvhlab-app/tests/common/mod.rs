@@ -137,3 +137,26 @@ pub fn drag_test_ray(h: &mut Harness<'_, LabApp>) -> Ray2 {
     );
     expected
 }
+
+/// Counts the events of a prefix, as the lecture counts them: nodes entered (cells for a
+/// grid), bounding-volume or plane tests, exact primitive tests (mailboxed ones excluded).
+pub fn count<V: bvhlab::Vector>(events: &[bvhlab::Event<V>]) -> [u64; 3] {
+    use bvhlab::Event;
+    use bvhlab::structure::PrimitiveResult;
+    let mut c = [0; 3];
+    for e in events {
+        match e {
+            Event::EnterNode { .. } | Event::CellEnter { .. } => c[0] += 1,
+            Event::RayBoundTest { .. }
+            | Event::DistanceBoundTest { .. }
+            | Event::PlaneCrossed { .. } => {
+                c[1] += 1;
+            }
+            Event::PrimitiveTest { result, .. } if *result != PrimitiveResult::AlreadyTested => {
+                c[2] += 1;
+            }
+            _ => {}
+        }
+    }
+    c
+}
