@@ -421,8 +421,10 @@ impl LabApp {
             ui.selectable_value(&mut self.dimension, Dimension::Two, "2D: segments");
             ui.selectable_value(&mut self.dimension, Dimension::Three, "3D: meshes");
             if self.dimension != before {
-                // Each half has its own recording: start its playback at the end.
+                // Each half has its own recording (start its playback at the end) and its own
+                // messages.
                 self.playback = Playback::default();
+                self.message = None;
                 self.refresh();
             }
         });

@@ -321,3 +321,26 @@ fn the_gizmo_moves_the_point_along_an_axis_and_in_the_view_plane() {
     assert_eq!(rec.question.point, Some(moved));
     assert!(rec.agrees());
 }
+
+#[test]
+fn the_heat_map_fills_in_on_the_cpu_without_a_gpu() {
+    let mut h = lab_3d();
+    press(&mut h, Key::H);
+    assert!(h.state().lab3d.heat.on, "H shows the heat map");
+    let mut progress = Vec::new();
+    for _ in 0..500 {
+        h.step();
+        let heat = h.state().lab3d.heat_report().expect("shown");
+        assert_eq!(heat.device, "cpu", "no GPU in this harness");
+        progress.push(heat.progress);
+        if heat.progress >= 1.0 {
+            break;
+        }
+    }
+    assert_eq!(progress.last(), Some(&1.0), "{progress:?}");
+    assert!(progress.windows(2).all(|w| w[0] <= w[1]));
+    let heat = h.state().lab3d.heat_report().expect("shown");
+    assert!(heat.max > 0, "some ray visited a node");
+    press(&mut h, Key::H);
+    assert!(h.state().lab3d.heat_report().is_none(), "H hides it again");
+}

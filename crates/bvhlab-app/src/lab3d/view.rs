@@ -1,5 +1,5 @@
 //! The 3D view in the middle of the lab: the pointer, then the mesh and everything in
-//! [`Draw3d`](super::draw::Draw3d) drawn by the wgpu renderer through an `egui_wgpu` paint
+//! [`Draw3d`] drawn by the wgpu renderer through an `egui_wgpu` paint
 //! callback, with the heat map, the progress of a build and a legend on top.
 
 use egui::{Align2, Color32, FontId, Sense};
