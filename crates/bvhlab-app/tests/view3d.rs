@@ -325,7 +325,9 @@ fn the_gizmo_moves_the_point_along_an_axis_and_in_the_view_plane() {
 #[test]
 fn the_heat_map_fills_in_on_the_cpu_without_a_gpu() {
     let mut h = lab_3d();
-    press(&mut h, Key::H);
+    // Frame by frame: the map keeps the lab repainting until it is done.
+    h.key_press(Key::H);
+    h.step();
     assert!(h.state().lab3d.heat.on, "H shows the heat map");
     let mut progress = Vec::new();
     for _ in 0..500 {
@@ -341,6 +343,7 @@ fn the_heat_map_fills_in_on_the_cpu_without_a_gpu() {
     assert!(progress.windows(2).all(|w| w[0] <= w[1]));
     let heat = h.state().lab3d.heat_report().expect("shown");
     assert!(heat.max > 0, "some ray visited a node");
-    press(&mut h, Key::H);
+    h.key_press(Key::H);
+    h.step();
     assert!(h.state().lab3d.heat_report().is_none(), "H hides it again");
 }
