@@ -163,6 +163,8 @@ async function runOne({ renderer, heat, args }) {
       cost: t.cost,
       brute: t.brute_force_tests,
       heat: mapped.three.heat_map,
+      heatPicture: map.png,
+      view: ready.three.view,
       refused: refused.three.message,
     };
   } finally {
@@ -170,16 +172,42 @@ async function runOne({ renderer, heat, args }) {
   }
 }
 
+// The share of pixels of `rect` that two pictures show alike (within 12 levels).
+function alike(a, b, [x0, y0, x1, y1]) {
+  let same = 0;
+  let all = 0;
+  for (let y = Math.ceil(y0); y < Math.floor(y1); y++) {
+    for (let x = Math.ceil(x0); x < Math.floor(x1); x++) {
+      all++;
+      if (colourDistance(rgb(a, x, y), rgb(b, x, y)) <= 12) same++;
+    }
+  }
+  return same / Math.max(1, all);
+}
+
 let failed = 0;
+const maps = [];
 for (const run of RUNS) {
   try {
     const s = await runOne(run);
+    maps.push(s);
     console.log(`ok 3D ${run.renderer}: bunny built and shown in ${seconds(s.readyMs)}; click hit triangle ${s.hit.triangle} at t = ${s.hit.t.toFixed(3)} ` +
       `with ${s.cost[0]} nodes, ${s.cost[1]} bound tests, ${s.cost[2]} triangle tests (brute force: ${s.brute}); ` +
       `heat map on the ${s.heat.device.toUpperCase()}, largest count ${s.heat.max}; a broken STL: "${s.refused}"`);
   } catch (error) {
     failed++;
     console.log(`FAILED 3D ${run.renderer}: ${error instanceof Failure ? error.message : error.stack}`);
+  }
+}
+// The GPU's map (WebGPU) and the CPU's (WebGL2) are the same picture: the same counts, the
+// same colours, shown the same way.
+if (maps.length === 2) {
+  const share = alike(maps[0].heatPicture, maps[1].heatPicture, maps[0].view);
+  if (share >= 0.99) {
+    console.log(`ok 3D heat maps: the GPU's and the CPU's pictures agree on ${(share * 100).toFixed(2)}% of the view's pixels`);
+  } else {
+    failed++;
+    console.log(`FAILED 3D heat maps: the GPU's and the CPU's pictures agree on only ${(share * 100).toFixed(2)}% of the view's pixels`);
   }
 }
 console.log(`e2e 3D: ${RUNS.length - failed} passed, ${failed} failed`);

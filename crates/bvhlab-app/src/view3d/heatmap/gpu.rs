@@ -165,8 +165,8 @@ struct Target {
     texture: wgpu::Texture,
     /// `Rgba8Unorm`, written by the colouring pass.
     storage_view: wgpu::TextureView,
-    /// The same texels as `Rgba8UnormSrgb`: the colours are sRGB, which egui expects to
-    /// sample decoded.
+    /// The same texels for sampling: sRGB-encoded bytes, which egui-wgpu samples as they
+    /// are, as it does its own textures.
     display_view: wgpu::TextureView,
 }
 

@@ -52,11 +52,14 @@ pub(super) fn make_target(device: &wgpu::Device, size: [u32; 2]) -> Result<Targe
         usage: wgpu::TextureUsages::STORAGE_BINDING
             | wgpu::TextureUsages::TEXTURE_BINDING
             | wgpu::TextureUsages::COPY_SRC,
-        view_formats: &[wgpu::TextureFormat::Rgba8UnormSrgb],
+        view_formats: &[],
     });
     let storage_view = texture.create_view(&wgpu::TextureViewDescriptor::default());
+    // egui-wgpu 0.37 keeps its own textures as `Rgba8Unorm` and samples the sRGB-encoded
+    // bytes as they are (it blends in gamma space), so the image is shown the same way: an
+    // `Rgba8UnormSrgb` view would decode it and show it darker than the CPU's image.
     let display_view = texture.create_view(&wgpu::TextureViewDescriptor {
-        format: Some(wgpu::TextureFormat::Rgba8UnormSrgb),
+        format: Some(wgpu::TextureFormat::Rgba8Unorm),
         usage: Some(wgpu::TextureUsages::TEXTURE_BINDING),
         ..wgpu::TextureViewDescriptor::default()
     });
