@@ -188,23 +188,17 @@ impl Lane {
 
     /// Updates the snapshot to the playback's step (in live mode: this lane's end).
     pub fn follow(&mut self, playback: &Playback) {
-        let (Some(built), Some(rec)) = (
-            &self.built,
-            self.recording.as_ref().and_then(|r| r.as_ref().ok()),
-        ) else {
-            self.snapshot = None;
-            return;
-        };
-        let step = playback.shown(rec.events.len());
-        if self.snapshot.as_ref().is_some_and(|s| s.step == step) {
-            return;
-        }
-        self.snapshot = Some(Snapshot::at(
-            rec,
-            built.settings.kind,
-            step,
-            built.outline.len(),
-        ));
+        let recording = self.recording.as_ref().and_then(|r| r.as_ref().ok());
+        let (kind, nodes) = self.built.as_ref().map_or((self.settings.kind, 0), |b| {
+            (b.settings.kind, b.outline.len())
+        });
+        Snapshot::follow(
+            &mut self.snapshot,
+            recording.filter(|_| self.built.is_some()),
+            kind,
+            nodes,
+            playback,
+        );
     }
 
     /// The marks at the playback step.

@@ -258,6 +258,26 @@ impl<V: Vector> Default for Snapshot<V> {
 }
 
 impl<V: Vector> Snapshot<V> {
+    /// Brings `snapshot` to the playback's step of `recording` (over a structure of
+    /// `node_count` nodes of `kind`), folding again only when the step changed; clears it
+    /// without a recording.
+    pub fn follow(
+        snapshot: &mut Option<Self>,
+        recording: Option<&Recording<V>>,
+        kind: StructureKind,
+        node_count: usize,
+        playback: &Playback,
+    ) {
+        let Some(rec) = recording else {
+            *snapshot = None;
+            return;
+        };
+        let step = playback.shown(rec.events.len());
+        if snapshot.as_ref().is_none_or(|s| s.step != step) {
+            *snapshot = Some(Self::at(rec, kind, step, node_count));
+        }
+    }
+
     /// Folds the first `step` events of `recording` over a structure of `node_count` nodes.
     pub fn at(
         recording: &Recording<V>,

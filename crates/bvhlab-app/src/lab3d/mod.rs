@@ -278,20 +278,18 @@ impl Lab3d {
 
     /// Updates the snapshot to the playback's step.
     pub fn follow(&mut self, playback: &Playback) {
-        let (Some(built), Some(rec)) = (&self.built, self.recorded()) else {
-            self.snapshot = None;
-            return;
-        };
-        let step = playback.shown(rec.events.len());
-        if self.snapshot.as_ref().is_some_and(|s| s.step == step) {
-            return;
-        }
-        self.snapshot = Some(Snapshot::at(
-            rec,
-            built.settings.kind,
-            step,
-            built.node_count,
-        ));
+        let recording = self.recording.as_ref().and_then(|r| r.as_ref().ok());
+        let (kind, nodes) = self
+            .built
+            .as_ref()
+            .map_or((self.settings.kind, 0), |b| (b.settings.kind, b.node_count));
+        Snapshot::follow(
+            &mut self.snapshot,
+            recording.filter(|_| self.built.is_some()),
+            kind,
+            nodes,
+            playback,
+        );
     }
 
     /// The mesh's triangle `index`.
