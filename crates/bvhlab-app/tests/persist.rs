@@ -4,7 +4,7 @@
 //! garbage, deflate bombs, a few hundred seeded mutations) give a message and leave the lab
 //! as it was; the start-up order and the autosave are checked on plain data.
 
-use std::sync::Arc;
+mod common;
 
 use base64::Engine as _;
 use base64::engine::general_purpose::URL_SAFE_NO_PAD;
@@ -823,17 +823,6 @@ fn a_file_dropped_on_the_window_opens_and_a_bad_one_is_refused() {
     use egui_kittest::Harness;
     use egui_kittest::kittest::Queryable as _;
 
-    #[derive(Debug)]
-    struct Dropped(std::path::PathBuf);
-    impl egui::DroppedFile for Dropped {
-        fn path(&self) -> &std::path::Path {
-            &self.0
-        }
-        fn bytes(&self) -> Result<Vec<u8>, String> {
-            std::fs::read(&self.0).map_err(|e| e.to_string())
-        }
-    }
-
     let dir = std::env::temp_dir().join(format!("bvhlab-persist-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("temp dir");
     let good = dir.join("scene.json");
@@ -846,9 +835,7 @@ fn a_file_dropped_on_the_window_opens_and_a_bad_one_is_refused() {
         .with_size(egui::vec2(1800.0, 1800.0))
         .build_ui_state(|ui, app: &mut LabApp| app.show(ui), LabApp::default());
     h.run();
-    h.input_mut()
-        .dropped_files
-        .push(Arc::new(Dropped(good.clone())));
+    common::drop_file(&mut h, &good);
     h.run();
     let app = h.state();
     assert_eq!(app.scene.shapes(), source.scene.shapes());
@@ -862,7 +849,7 @@ fn a_file_dropped_on_the_window_opens_and_a_bad_one_is_refused() {
     );
 
     let revision = h.state().scene.revision();
-    h.input_mut().dropped_files.push(Arc::new(Dropped(bad)));
+    common::drop_file(&mut h, &bad);
     h.run();
     let message = h.state().message.clone().unwrap_or_default();
     assert!(

@@ -3,8 +3,6 @@
 
 mod common;
 
-use std::sync::Arc;
-
 use bvhlab::glam::Vec2;
 use bvhlab::{BruteForce, SpatialIndex};
 use bvhlab_app::LabApp;
@@ -202,16 +200,6 @@ fn a_million_triangles_build_over_many_frames_with_rising_progress() {
 
 #[test]
 fn a_broken_mesh_file_is_refused_and_the_open_mesh_stays() {
-    #[derive(Debug)]
-    struct Dropped(std::path::PathBuf);
-    impl egui::DroppedFile for Dropped {
-        fn path(&self) -> &std::path::Path {
-            &self.0
-        }
-        fn bytes(&self) -> Result<Vec<u8>, String> {
-            std::fs::read(&self.0).map_err(|e| e.to_string())
-        }
-    }
     let mut h = lab_3d();
     let before = h
         .state()
@@ -226,7 +214,7 @@ fn a_broken_mesh_file_is_refused_and_the_open_mesh_stays() {
     let mut bytes = vec![0u8; 80];
     bytes.extend_from_slice(&1200u32.to_le_bytes());
     std::fs::write(&bad, &bytes).expect("write");
-    h.input_mut().dropped_files.push(Arc::new(Dropped(bad)));
+    common::drop_file(&mut h, &bad);
     h.run();
     settle(&mut h);
     let lab = &h.state().lab3d;
@@ -240,7 +228,7 @@ fn a_broken_mesh_file_is_refused_and_the_open_mesh_stays() {
     // A good file in another format opens.
     let good = dir.join("tri.obj");
     std::fs::write(&good, b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").expect("write");
-    h.input_mut().dropped_files.push(Arc::new(Dropped(good)));
+    common::drop_file(&mut h, &good);
     h.run();
     until_built(&mut h);
     let lab = &h.state().lab3d;

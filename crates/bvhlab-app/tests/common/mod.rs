@@ -160,3 +160,23 @@ pub fn count<V: bvhlab::Vector>(events: &[bvhlab::Event<V>]) -> [u64; 3] {
     }
     c
 }
+
+/// A file on disk dropped on the window, as the native app receives one.
+#[derive(Debug)]
+pub struct DroppedFile(pub std::path::PathBuf);
+
+impl egui::DroppedFile for DroppedFile {
+    fn path(&self) -> &std::path::Path {
+        &self.0
+    }
+    fn bytes(&self) -> Result<Vec<u8>, String> {
+        std::fs::read(&self.0).map_err(|e| e.to_string())
+    }
+}
+
+/// Drops the file at `path` on the window (it is opened in the next frames).
+pub fn drop_file(h: &mut Harness<'_, LabApp>, path: &std::path::Path) {
+    h.input_mut()
+        .dropped_files
+        .push(std::sync::Arc::new(DroppedFile(path.to_path_buf())));
+}
