@@ -38,6 +38,8 @@ wasm=target/wasm32-unknown-unknown/release/bvhlab-app.wasm
 rm -rf dist
 mkdir -p dist
 wasm-bindgen --target web --no-typescript --out-dir dist --out-name app "$wasm"
-cp index.html dist/
+cp index.html web/main.js web/lab.css dist/
+# The example course page that embeds two labs, and the script it uses to drive them.
+cp web/embed.html web/embed.js web/embed.css web/bvhlab-embed.js dist/
 
-echo "Built dist/ ($(du -sh dist | cut -f1)): index.html, app.js, app_bg.wasm"
+if command -v node >/dev/null; then node web/size.mjs dist; fi

@@ -3,9 +3,10 @@
 // a free port). Listens on 127.0.0.1 only and prints the address once listening.
 //
 // The page must not fetch anything from elsewhere at run time, so every answer carries a strict
-// Content-Security-Policy; 'wasm-unsafe-eval' is what lets the page compile its WebAssembly.
-// index.html's own inline loader script is allowed by its hash (computed here from the file as
-// served), never by 'unsafe-inline'.
+// Content-Security-Policy (the same as index.html's meta element): 'wasm-unsafe-eval' is what
+// lets the page compile its WebAssembly; no inline script or style, no eval. An inline script
+// in a served page would be allowed by its hash (computed here from the file as served), never
+// by 'unsafe-inline'; the lab's pages have none.
 
 import { createHash } from 'node:crypto';
 import { createServer } from 'node:http';
@@ -41,8 +42,12 @@ function policyFor(inlineScripts = []) {
   return [
     "default-src 'self'",
     ["script-src 'self' 'wasm-unsafe-eval'", ...hashes].join(' '),
-    "style-src 'self' 'unsafe-inline'",
-    "img-src 'self' data:",
+    "style-src 'self'",
+    "img-src 'self' data: blob:",
+    "connect-src 'self'",
+    "object-src 'none'",
+    "base-uri 'none'",
+    "form-action 'none'",
   ].join('; ');
 }
 const policy = policyFor();

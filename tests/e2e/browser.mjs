@@ -106,3 +106,18 @@ export async function frames(page, n) {
     n,
   );
 }
+
+// Drops a file with these bytes on the page's canvas, as a student dragging it from the desktop.
+export async function dropFile(page, name, bytes) {
+  await page.evaluate(
+    ({ name, bytes }) => {
+      const transfer = new DataTransfer();
+      transfer.items.add(new File([new Uint8Array(bytes)], name));
+      const canvas = document.querySelector('canvas');
+      for (const type of ['dragenter', 'dragover', 'drop']) {
+        canvas.dispatchEvent(new DragEvent(type, { dataTransfer: transfer, bubbles: true, cancelable: true }));
+      }
+    },
+    { name, bytes: [...bytes] },
+  );
+}

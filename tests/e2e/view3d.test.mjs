@@ -21,6 +21,7 @@ import {
   check,
   colourDistance,
   decode,
+  dropFile,
   rgb,
   seconds,
   waitForReport,
@@ -58,21 +59,6 @@ function changedNear(before, after, x, y, radius) {
     }
   }
   return changed;
-}
-
-// Drops a file with these bytes on the page's canvas, as a student dragging it from the desktop.
-async function dropFile(page, name, bytes) {
-  await page.evaluate(
-    ({ name, bytes }) => {
-      const transfer = new DataTransfer();
-      transfer.items.add(new File([new Uint8Array(bytes)], name));
-      const canvas = document.querySelector('canvas');
-      for (const type of ['dragenter', 'dragover', 'drop']) {
-        canvas.dispatchEvent(new DragEvent(type, { dataTransfer: transfer, bubbles: true, cancelable: true }));
-      }
-    },
-    { name, bytes: [...bytes] },
-  );
 }
 
 // A binary STL: an 80-byte header, a count, and 50 bytes per triangle.

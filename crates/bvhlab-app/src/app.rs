@@ -83,6 +83,7 @@ impl RayHandles {
 pub type FitsKey = (u64, Vec<usize>);
 
 /// The whole lab.
+#[allow(clippy::struct_excessive_bools)] // independent switches (panels shown, hover linking)
 pub struct LabApp {
     /// The 2D canvas or the 3D view.
     pub dimension: Dimension,
@@ -128,6 +129,10 @@ pub struct LabApp {
     pub trees: crate::tree_panel::Trees,
     /// Whether the tree diagrams are shown.
     pub show_tree: bool,
+    /// Whether the controls (left) are shown; a page embedding a small lab may hide them.
+    pub show_controls: bool,
+    /// Whether the "Step through" panel (right) is shown.
+    pub show_stepper: bool,
     /// A PNG export waiting for its screenshot.
     pub pending_png: Option<crate::export_ui::PendingPng>,
     /// The query ray.
@@ -184,6 +189,8 @@ impl Default for LabApp {
             pending_png: None,
             trees: Default::default(),
             show_tree: true,
+            show_controls: true,
+            show_stepper: true,
             ray: None,
             point: None,
             k: 1,
@@ -264,7 +271,13 @@ impl LabApp {
     pub fn refresh(&mut self) {
         if self.dimension == Dimension::Three {
             let question = self.question_3d();
-            if self.lab3d.refresh(&question, self.clock.median_ms()) {
+            let mut changed = self.lab3d.refresh(&question, self.clock.median_ms());
+            // A mesh that just loaded brings its ray and point: record the question it asks.
+            let after = self.question_3d();
+            if after != question {
+                changed |= self.lab3d.refresh(&after, self.clock.median_ms());
+            }
+            if changed {
                 let len = self.steps();
                 self.playback.fit(len);
             }
@@ -374,26 +387,32 @@ impl LabApp {
             ui.ctx().request_repaint();
         }
         let three = self.dimension == Dimension::Three;
-        egui::Panel::left("controls")
-            .resizable(true)
-            .default_size(340.0)
-            .show(ui, |ui| {
-                egui::ScrollArea::vertical().show(ui, |ui| {
-                    self.dimension_switch(ui);
-                    if three {
-                        crate::lab3d::panel::controls(self, ui);
-                    } else {
-                        crate::panels::controls(self, ui);
-                    }
+        // Narrow windows (an embedded lab) give the panels less, so the view keeps room.
+        let width = ui.available_width();
+        if self.show_controls {
+            egui::Panel::left("controls")
+                .resizable(true)
+                .default_size((width * 0.3).clamp(220.0, 340.0))
+                .show(ui, |ui| {
+                    egui::ScrollArea::vertical().show(ui, |ui| {
+                        self.dimension_switch(ui);
+                        if three {
+                            crate::lab3d::panel::controls(self, ui);
+                        } else {
+                            crate::panels::controls(self, ui);
+                        }
+                    });
                 });
-            });
+        }
         egui::Panel::bottom("status").show(ui, |ui| crate::panels::status_line(self, ui));
-        egui::Panel::right("stepper")
-            .resizable(true)
-            .default_size(440.0)
-            .show(ui, |ui| {
-                egui::ScrollArea::vertical().show(ui, |ui| crate::stepper::stepper(self, ui));
-            });
+        if self.show_stepper {
+            egui::Panel::right("stepper")
+                .resizable(true)
+                .default_size((width * 0.4).clamp(240.0, 440.0))
+                .show(ui, |ui| {
+                    egui::ScrollArea::vertical().show(ui, |ui| crate::stepper::stepper(self, ui));
+                });
+        }
         if self.show_tree && !three {
             egui::Panel::bottom("tree")
                 .resizable(true)

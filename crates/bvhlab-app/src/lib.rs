@@ -19,6 +19,7 @@
 pub mod app;
 pub mod build_view;
 pub mod canvas;
+pub mod embed;
 pub mod export;
 pub mod export_ui;
 pub mod frame_clock;

@@ -35,25 +35,36 @@ pub fn controls(app: &mut LabApp, ui: &mut egui::Ui) {
 }
 
 /// The line at the bottom: the last message, or what the tool does; and the frame rate.
-pub fn status_line(app: &LabApp, ui: &mut egui::Ui) {
+pub fn status_line(app: &mut LabApp, ui: &mut egui::Ui) {
     let three = app.dimension == crate::app::Dimension::Three;
     let message = app
         .message
-        .as_ref()
-        .or_else(|| app.lab3d.message.as_ref().filter(|_| three));
-    ui.horizontal(|ui| {
-        match message {
-            Some(m) => ui.label(RichText::new(m).color(colors::SELECTED)),
-            None if three => ui.label(crate::lab3d::panel::status(app)),
-            None => ui.label(app.tool.hint()),
-        };
-        ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
-            if let (Some(ms), Some(fps)) = (app.clock.median_ms(), app.clock.fps()) {
-                ui.label(format!("frame {ms:.1} ms ({fps:.0} fps)"));
-            }
-            if let Some(r) = &app.renderer {
-                ui.label(format!("{r} ·"));
-            }
+        .clone()
+        .or_else(|| app.lab3d.message.clone().filter(|_| three));
+    ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
+        // The side panels fold away for small windows (and embedded labs).
+        ui.toggle_value(&mut app.show_stepper, "Step through")
+            .on_hover_text("Show or hide the \"Step through\" panel");
+        ui.toggle_value(&mut app.show_controls, "Controls")
+            .on_hover_text("Show or hide the controls");
+        if let (Some(ms), Some(fps)) = (app.clock.median_ms(), app.clock.fps()) {
+            ui.label(format!("frame {ms:.1} ms ({fps:.0} fps)"));
+        }
+        if let Some(r) = &app.renderer {
+            ui.label(format!("{r} ·"));
+        }
+        // What is left, from the left: a message wraps (it must be read whole), a hint is
+        // cut short.
+        ui.with_layout(egui::Layout::left_to_right(egui::Align::Center), |ui| {
+            match message {
+                Some(m) => {
+                    ui.add(egui::Label::new(RichText::new(m).color(colors::SELECTED)).wrap())
+                }
+                None if three => {
+                    ui.add(egui::Label::new(crate::lab3d::panel::status(app)).truncate())
+                }
+                None => ui.add(egui::Label::new(app.tool.hint()).truncate()),
+            };
         });
     });
 }

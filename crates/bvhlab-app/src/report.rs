@@ -28,6 +28,9 @@ pub struct Report {
     pub playback: Vec<PlaybackReport>,
     /// The 3D view, when it is shown.
     pub three: Option<crate::lab3d::report::Report3d>,
+    /// The status line's message, when there is one (a file or link that could not be
+    /// opened, and what was kept).
+    pub message: Option<String>,
     /// The median interval between frames, in milliseconds.
     pub frame_ms: Option<f64>,
     /// The median CPU time per frame (UI, tessellation, draw calls), in milliseconds.
@@ -198,6 +201,7 @@ impl Report {
         Self {
             ready: true,
             renderer: app.renderer.clone(),
+            message: app.message.clone(),
             canvas: [r.min.x, r.min.y, r.max.x, r.max.y],
             scene: SceneReport {
                 shapes: app.scene.shapes().len(),

@@ -8,12 +8,15 @@
 //! an inbox ([`take_news`]) that the lab reads on its next frame.
 
 use std::cell::RefCell;
+use std::rc::Rc;
 
 use wasm_bindgen::JsCast;
 use wasm_bindgen::prelude::*;
 use wasm_bindgen_futures::JsFuture;
 
 use crate::LabApp;
+use crate::embed::browser::{Inbox, Origins, on_panic_tell_page};
+use crate::embed::{Scripting, StartParams};
 use crate::persist::{Autosave, AutosaveStep, STORAGE_KEY};
 use crate::report::Report;
 
@@ -54,18 +57,32 @@ pub fn start() {
             log::error!("the page has no <canvas id=\"lab\">");
             return;
         };
-        let (app, saved, failed) = start_state();
-        let result = eframe::WebRunner::new()
+        let start = start_state();
+        let origins = Origins::new(&start.params.origins);
+        let inbox: Inbox = Rc::new(RefCell::new(Scripting::new(start.params.debug_panic)));
+        let runner = eframe::WebRunner::new();
+        // After eframe's own hook (installed by `WebRunner::new`), so that both run.
+        on_panic_tell_page(start.key.clone(), origins.clone());
+        let result = runner
             .start(
                 canvas,
                 eframe::WebOptions::default(),
                 Box::new(move |cc| {
                     listen_for_links(cc.egui_ctx.clone());
+                    crate::embed::browser::listen(
+                        inbox.clone(),
+                        origins.clone(),
+                        cc.egui_ctx.clone(),
+                    );
                     Ok(Box::new(WebLab {
-                        app,
-                        autosave: Autosave::new(saved),
-                        hold: failed,
+                        app: start.app,
+                        autosave: Autosave::new(start.saved),
+                        key: start.key,
+                        hold: start.saved_failed,
                         storage_failed: false,
+                        inbox,
+                        origins,
+                        announced: false,
                     }))
                 }),
             )
@@ -79,47 +96,61 @@ pub fn start() {
     });
 }
 
-/// The lab the page opens with ([`crate::persist::startup`]: a `#s=` link, then `?preset=`,
-/// then the saved state, then the default), the saved state's text, and whether something
-/// asked for failed to open.
+/// What the page starts with.
+struct StartState {
+    app: LabApp,
+    /// The state saved in this browser under `key`, as text.
+    saved: Option<String>,
+    /// The `localStorage` key of this lab's state (see [`StartParams::storage_key`]).
+    key: String,
+    /// The saved state could not be restored: keep it until the student changes something.
+    saved_failed: bool,
+    params: StartParams,
+}
+
+/// The lab the page opens with ([`crate::embed::start`]: a `#s=` link, then the state saved
+/// for these parameters, then the address's parameters), read from the address and the
+/// browser's storage.
 ///
 /// A share link's fragment is removed from the address once read ([`forget_link`]).
-fn start_state() -> (LabApp, Option<String>, bool) {
+fn start_state() -> StartState {
     let Some(window) = web_sys::window() else {
-        return (LabApp::default(), None, false);
+        return StartState {
+            app: LabApp::default(),
+            saved: None,
+            key: STORAGE_KEY.to_owned(),
+            saved_failed: false,
+            params: StartParams::default(),
+        };
     };
     let location = window.location();
     let hash = location.hash().unwrap_or_default();
     let search = location.search().unwrap_or_default();
-    let preset = search
-        .trim_start_matches('?')
-        .split('&')
-        .find_map(|pair| pair.strip_prefix("preset="))
-        .map(str::to_owned);
+    let params = StartParams::parse(&search);
+    let key = params.storage_key();
     let saved = window
         .local_storage()
         .ok()
         .flatten()
-        .and_then(|s| s.get_item(STORAGE_KEY).ok().flatten());
+        .and_then(|s| s.get_item(&key).ok().flatten());
     let fragment = (!hash.is_empty()).then_some(hash.as_str());
-    let (mut app, message) = crate::persist::startup(fragment, preset.as_deref(), saved.as_deref());
-    // `?mesh=SLUG` opens the 3D view on a built-in mesh (`?mesh=bunny`).
-    let mesh = search
-        .trim_start_matches('?')
-        .split('&')
-        .find_map(|pair| pair.strip_prefix("mesh="));
-    if let Some(slug) = mesh {
-        app.dimension = crate::app::Dimension::Three;
-        app.lab3d
-            .open(crate::lab3d::mesh::MeshSource::Builtin(slug.to_owned()));
-    }
-    if let Some(m) = &message {
+    let start = crate::embed::start(fragment, &params, saved.as_deref());
+    if let Some(m) = &start.message {
         log::warn!("{m}");
     }
     if hash.starts_with(crate::persist::LINK_PREFIX) {
         forget_link();
     }
-    (app, saved, message.is_some())
+    if params.fresh {
+        forget_fresh();
+    }
+    StartState {
+        app: start.app,
+        saved,
+        key,
+        saved_failed: start.saved_failed,
+        params,
+    }
 }
 
 /// Removes a share link's fragment from the address (keeping path and query), so that a
@@ -140,6 +171,32 @@ pub fn forget_link() {
             .is_err()
     {
         log::warn!("could not remove the share link from the address");
+    }
+}
+
+/// Removes `fresh=1` from the address once the lab has started from the page's own scene, so
+/// that a later reload restores what the student does from now on.
+fn forget_fresh() {
+    let Some(window) = web_sys::window() else {
+        return;
+    };
+    let location = window.location();
+    let search = location.search().unwrap_or_default();
+    let kept: Vec<&str> = search
+        .trim_start_matches('?')
+        .split('&')
+        .filter(|pair| !pair.is_empty() && !pair.starts_with("fresh="))
+        .collect();
+    let rest = if kept.is_empty() {
+        String::new()
+    } else {
+        format!("?{}", kept.join("&"))
+    };
+    let address = format!("{}{rest}", location.pathname().unwrap_or_default());
+    if let Ok(history) = window.history() {
+        history
+            .replace_state_with_url(&JsValue::NULL, "", Some(&address))
+            .ok();
     }
 }
 
@@ -167,10 +224,19 @@ fn listen_for_links(ctx: egui::Context) {
     on_change.forget();
 }
 
-/// The lab, and the autosave that keeps its state in `localStorage`.
+/// The lab, the autosave that keeps its state in `localStorage`, and the commands of the
+/// page that embeds it.
 struct WebLab {
     app: LabApp,
     autosave: Autosave,
+    /// Where the state is kept.
+    key: String,
+    /// The page's commands and the replies owed.
+    inbox: Inbox,
+    /// Who may send commands (and hears `ready`).
+    origins: Origins,
+    /// Whether `ready` was posted to the embedding page.
+    announced: bool,
     /// The start-up failed and fell back to the default scene: keep the state saved earlier
     /// until the student changes something (taken after the first frame, which fits the view).
     hold: bool,
@@ -180,12 +246,24 @@ struct WebLab {
 
 impl eframe::App for WebLab {
     fn ui(&mut self, ui: &mut egui::Ui, frame: &mut eframe::Frame) {
+        let now = ui.input(|i| i.time);
+        self.inbox.borrow_mut().before_frame(&mut self.app, now);
         // The lab publishes its report itself.
         eframe::App::ui(&mut self.app, ui, frame);
+        let replies = self.inbox.borrow_mut().after_frame(&self.app, now);
+        for (reply_to, json) in replies {
+            crate::embed::browser::send(&reply_to, &json);
+        }
+        if self.inbox.borrow().pending() {
+            ui.ctx().request_repaint();
+        }
+        if !self.announced {
+            self.announced = true;
+            crate::embed::browser::announce(&self.origins, r#"{"bvhlab":"ready"}"#);
+        }
         if std::mem::take(&mut self.hold) {
             self.autosave.keep_current(&self.app);
         }
-        let now = ui.input(|i| i.time);
         match self.autosave.poll(&self.app, now) {
             AutosaveStep::Idle => {}
             AutosaveStep::Wait(seconds) => {
@@ -202,7 +280,7 @@ impl WebLab {
     fn store(&mut self, json: &str) {
         let written = web_sys::window()
             .and_then(|w| w.local_storage().ok().flatten())
-            .is_some_and(|s| s.set_item(STORAGE_KEY, json).is_ok());
+            .is_some_and(|s| s.set_item(&self.key, json).is_ok());
         if written {
             self.storage_failed = false;
             return;

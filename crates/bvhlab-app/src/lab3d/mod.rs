@@ -104,6 +104,9 @@ pub struct Lab3d {
     pub view_rect: egui::Rect,
     /// The traversal-cost heat map, when on.
     pub heat: heat::Heat,
+    /// A saved camera, ray, point and radius to put back once the pending mesh has loaded,
+    /// instead of framing it afresh (a reload, a scene file, a share link).
+    pub placement: Option<Placement3d>,
     /// A mesh was loaded and the view has not framed it yet.
     framing: bool,
     last_question: Option<Question<Vec3>>,
@@ -135,11 +138,28 @@ impl Default for Lab3d {
             dragging: None,
             view_rect: egui::Rect::NOTHING,
             heat: heat::Heat::default(),
+            placement: None,
             framing: false,
             last_question: None,
             revisions: 0,
         }
     }
+}
+
+/// What to put back over a mesh once it has loaded, instead of the defaults: a saved state's
+/// camera, ray, point and radius, or the ray and point the page's address asks for (the
+/// camera then frames the mesh as usual).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Placement3d {
+    /// The camera; `None` frames the mesh.
+    pub camera: Option<OrbitCamera>,
+    /// The ray; `None` leaves none (or, when the camera frames the mesh, one through the
+    /// middle of the view).
+    pub ray: Option<Ray3>,
+    /// The query point; `None` as for the ray.
+    pub point: Option<Vec3>,
+    /// The range query's radius; `None` takes a tenth of the mesh's size.
+    pub radius: Option<f32>,
 }
 
 /// Milliseconds of build work per frame: enough to finish a small mesh at once, little
@@ -195,11 +215,19 @@ impl Lab3d {
         self.revisions += 1;
         match mesh::load(source, self.revisions) {
             Ok(mesh) => {
-                self.radius = mesh.size() * 0.1;
-                // The camera, ray and point are placed by the view, which knows its shape.
-                self.framing = true;
-                self.ray = None;
-                self.point = None;
+                let saved = self.placement.take().unwrap_or_default();
+                self.radius = saved.radius.unwrap_or(mesh.size() * 0.1);
+                self.ray = saved.ray;
+                self.point = saved.point;
+                match saved.camera {
+                    Some(camera) => {
+                        self.camera = camera;
+                        self.framing = false;
+                    }
+                    // The camera (and a missing ray and point) are placed by the view, which
+                    // knows its shape.
+                    None => self.framing = true,
+                }
                 self.message = (!mesh.warnings.is_empty()).then(|| mesh.warnings.join(" "));
                 self.mesh = Some(mesh);
                 self.built = None;
@@ -208,6 +236,7 @@ impl Lab3d {
                 self.snapshot = None;
             }
             Err(e) => {
+                self.placement = None;
                 let kept = self
                     .mesh
                     .as_ref()
@@ -261,9 +290,19 @@ impl Lab3d {
         }
         self.camera.frame_in(&mesh.bounds(), aspect);
         let size = mesh.size();
-        self.ray = Ray3::new(self.camera.eye(), self.camera.basis().forward).ok();
-        // Beside the mesh, to the right in the view, where the gizmo is on screen.
-        self.point = Some(self.camera.target + self.camera.basis().right * size * 0.35);
+        if self.ray.is_none() {
+            self.ray = Ray3::new(self.camera.eye(), self.camera.basis().forward).ok();
+        }
+        if self.point.is_none() {
+            // Beside the mesh, to the right in the view, where the gizmo is on screen.
+            self.point = Some(self.camera.target + self.camera.basis().right * size * 0.35);
+        }
+    }
+
+    /// Whether the camera, ray and point belong to the mesh shown: it has loaded, nothing else
+    /// is loading, and the view has framed it.
+    pub fn placed(&self) -> bool {
+        self.mesh.is_some() && self.pending.is_none() && !self.framing
     }
 
     /// Events in the recording (0 without one).

@@ -147,7 +147,8 @@ fn open_named(app: &mut LabApp, name: &str, bytes: Result<Vec<u8>, String>) {
         .and_then(|bytes| open_file(app, &bytes));
     app.message = Some(match result {
         Ok(()) => format!("Opened {name}."),
-        Err(e) => e,
+        Err(e) if e.starts_with(name) => e,
+        Err(e) => format!("{name}: {e}"),
     });
 }
 

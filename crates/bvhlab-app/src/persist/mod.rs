@@ -28,6 +28,7 @@ mod link;
 mod names;
 mod restore;
 mod state;
+mod state3d;
 mod storage;
 
 pub use actions::{
@@ -43,6 +44,7 @@ pub use state::{
     DisplayState, FORMAT_VERSION, PlaybackState, RayState, SavedState, SceneState, SettingsState,
     ShapeState, ViewState, VolumeState,
 };
+pub use state3d::{CameraState, MeshState, Ray3State, StoredPoint3, ThreeState};
 pub use storage::{AUTOSAVE_INTERVAL, Autosave, AutosaveStep, STORAGE_KEY};
 
 use crate::app::LabApp;
@@ -136,7 +138,9 @@ pub fn startup(
     let message = outcome
         .err()
         .map(|e| format!("{e}. The default scene is shown."));
-    app.message.clone_from(&message);
+    if message.is_some() {
+        app.message.clone_from(&message);
+    }
     (app, message)
 }
 

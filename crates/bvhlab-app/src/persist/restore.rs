@@ -16,6 +16,7 @@ use crate::volumes::VolumeToggles;
 
 use super::names::{Coord, StoredPoint};
 use super::state::{FORMAT_VERSION, SavedState, SceneState, SettingsState, point};
+use super::state3d::Restored3d;
 use super::{
     MAX_COORD, MAX_GRID_CELLS, MAX_K, MAX_LEAF_SIZE, MAX_POINTS, MAX_QUADTREE_DEPTH, MAX_SCALE,
     MAX_SHAPES, MIN_SCALE, capitalized,
@@ -40,6 +41,7 @@ struct Restored {
     live: bool,
     center: Vec2,
     scale: f32,
+    three: Option<Restored3d>,
 }
 
 impl SavedState {
@@ -159,6 +161,11 @@ impl Restored {
             live: state.playback.live,
             center: checked_point("the view's centre", state.view.center)?,
             scale,
+            three: state
+                .three
+                .as_ref()
+                .map(|t| Restored3d::check(t, settings("the 3D structure", &t.structure)?))
+                .transpose()?,
         })
     }
 
@@ -189,6 +196,14 @@ impl Restored {
         app.hovered = None;
         app.linked = None;
         app.fits_cache = None;
+        match self.three {
+            Some(three) => {
+                if let Some(note) = three.write(app) {
+                    app.message = Some(note);
+                }
+            }
+            None => app.dimension = crate::app::Dimension::Two,
+        }
     }
 }
 

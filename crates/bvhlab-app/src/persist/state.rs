@@ -18,6 +18,7 @@ use super::names::{
     Coord, KdSplitName, PresetSlug, ShapeName, SphereFitName, SplitName, StoredPoint,
     StructureName, TaskName, VariantName,
 };
+use super::state3d::ThreeState;
 
 /// The version of the format this lab writes and reads.
 pub const FORMAT_VERSION: u32 = 1;
@@ -84,6 +85,9 @@ pub struct SavedState {
     pub playback: PlaybackState,
     /// Pan and zoom.
     pub view: ViewState,
+    /// The 3D half: whether it is shown, its mesh, structure, camera, ray and point (absent in
+    /// files from before the 3D view: the 2D half is shown).
+    pub three: Option<ThreeState>,
 }
 
 /// The scene: `{"preset": "10k"}` (exactly that preset's shapes) or `{"shapes": [...]}`.
@@ -365,6 +369,7 @@ impl SavedState {
                 center: stored(app.view.center),
                 scale: Coord(app.view.scale),
             },
+            three: Some(ThreeState::capture(app)),
         }
     }
 }

@@ -46,6 +46,8 @@ struct ChangeKey {
     live: bool,
     center: Vec2,
     scale: f32,
+    /// The 3D half (a few strings and numbers: cheap to compare each frame).
+    three: super::ThreeState,
 }
 
 impl ChangeKey {
@@ -68,6 +70,7 @@ impl ChangeKey {
             live: app.playback.at_end,
             center: app.view.center,
             scale: app.view.scale,
+            three: super::ThreeState::capture(app),
         }
     }
 }

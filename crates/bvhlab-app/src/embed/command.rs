@@ -1,0 +1,271 @@
+//! The scripting API's commands: what a course page may ask of an embedded lab through
+//! `postMessage`, read from JSON and applied to the lab. Each command either changes the lab
+//! or is refused with a message that says why; a refused command changes nothing.
+
+use bvhlab::Ray3;
+use bvhlab::glam::{Vec2, Vec3};
+use serde::Deserialize;
+
+use crate::app::{Dimension, LabApp, RayHandles};
+use crate::lab3d::mesh::MeshSource;
+use crate::persist::{MAX_COORD, MAX_FILE_BYTES, SavedState, StructureName, TaskName};
+use crate::presets::Preset;
+
+/// A command, as the page sends it: `{"type": "set-ray", "origin": [0, 0], "direction": [1, 0]}`.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(tag = "type", rename_all = "kebab-case", deny_unknown_fields)]
+pub enum Command {
+    /// Replaces the whole state with a scene file's content (the JSON that "Export scene"
+    /// writes, as an object); the same checks as a dropped file.
+    LoadScene {
+        /// The scene file's JSON.
+        scene: serde_json::Value,
+    },
+    /// Opens a 2D preset (`kd-tree`, `quadtree`, ...) and shows the 2D half.
+    LoadPreset {
+        /// The preset's slug.
+        preset: String,
+    },
+    /// Opens a built-in mesh (`bunny`, `torus`, ...) and shows the 3D half.
+    LoadMesh {
+        /// The mesh's slug.
+        mesh: String,
+    },
+    /// Shows the 2D or the 3D half.
+    Show {
+        /// `"2d"` or `"3d"`.
+        view: String,
+    },
+    /// Sets the structure of the half shown.
+    SetStructure {
+        /// The structure's name (`kd-tree`, `aabb-tree`, ...).
+        structure: StructureName,
+    },
+    /// Sets what is stepped through.
+    SetTask {
+        /// The task's name (`first-hit`, `nearest`, ...).
+        task: TaskName,
+    },
+    /// Sets the ray of the half shown: 2 numbers each in 2D, 3 in 3D.
+    SetRay {
+        /// Where it starts.
+        origin: Vec<f64>,
+        /// Its direction (any non-zero length).
+        direction: Vec<f64>,
+    },
+    /// Sets the query point of the half shown.
+    SetPoint {
+        /// Its coordinates.
+        point: Vec<f64>,
+    },
+    /// Moves playback by `by` steps (negative: back).
+    Step {
+        /// How many steps.
+        by: i64,
+    },
+    /// Moves playback to step `step` (0: the start; past the end: the end).
+    GoToStep {
+        /// The step.
+        step: usize,
+    },
+    /// Starts or stops playback.
+    Play {
+        /// Whether to play.
+        playing: bool,
+    },
+    /// Changes nothing: the reply carries the report.
+    Report,
+    /// Replies with the lab's state as a scene file's JSON, in `scene`.
+    ExportScene,
+    /// Panics (only when the page's address has `debug=panic`): the browser test of what a
+    /// crash shows.
+    PanicForTest,
+}
+
+impl Command {
+    /// Reads a command from its JSON text.
+    ///
+    /// # Errors
+    /// Not JSON, an unknown `type`, a missing or unknown field, a wrong type.
+    pub fn parse(json: &str) -> Result<Self, String> {
+        if json.len() > MAX_FILE_BYTES {
+            return Err(format!(
+                "the command is {} bytes; at most {MAX_FILE_BYTES}",
+                json.len()
+            ));
+        }
+        serde_json::from_str(json).map_err(|e| format!("not a command the lab knows: {e}"))
+    }
+
+    /// Whether the command needs the lab's structures and recording ready (playback needs
+    /// to know how many steps there are).
+    pub fn needs_idle(&self) -> bool {
+        matches!(
+            self,
+            Self::Step { .. } | Self::GoToStep { .. } | Self::Play { .. }
+        )
+    }
+
+    /// Applies the command to `app`. Returns the extra reply as JSON text (`ExportScene`'s
+    /// scene).
+    ///
+    /// # Errors
+    /// Why it was refused; the lab is then unchanged.
+    ///
+    /// # Panics
+    /// On [`Command::PanicForTest`] when `debug_panic` is set: that is its purpose.
+    pub fn apply(self, app: &mut LabApp, debug_panic: bool) -> Result<Option<String>, String> {
+        let three = app.dimension == Dimension::Three;
+        match self {
+            Self::LoadScene { scene } => {
+                let text = serde_json::to_vec(&scene).map_err(|e| e.to_string())?;
+                crate::persist::from_file(&text)?.apply(app)?;
+            }
+            Self::LoadPreset { preset } => {
+                let p = Preset::from_slug(&preset)
+                    .ok_or_else(|| format!("the lab has no preset \"{preset}\""))?;
+                app.load_preset(p);
+                app.dimension = Dimension::Two;
+            }
+            Self::LoadMesh { mesh } => {
+                if !bvhlab_meshio::builtin::list()
+                    .iter()
+                    .any(|b| b.slug == mesh)
+                {
+                    return Err(format!("the lab has no built-in mesh \"{mesh}\""));
+                }
+                app.lab3d.open(MeshSource::Builtin(mesh));
+                app.dimension = Dimension::Three;
+            }
+            Self::Show { view } => {
+                app.dimension = match view.as_str() {
+                    "2d" => Dimension::Two,
+                    "3d" => Dimension::Three,
+                    _ => return Err(format!("view is \"{view}\"; it must be \"2d\" or \"3d\"")),
+                };
+            }
+            Self::SetStructure { structure } => {
+                let settings = if three {
+                    &mut app.lab3d.settings
+                } else {
+                    &mut app.lane.settings
+                };
+                settings.kind = structure.into();
+            }
+            Self::SetTask { task } => app.task = task.into(),
+            Self::SetRay { origin, direction } => set_ray(app, &origin, &direction)?,
+            Self::SetPoint { point } => set_point(app, &point)?,
+            Self::Step { by } => {
+                let len = app.steps();
+                let by =
+                    isize::try_from(by).unwrap_or(if by < 0 { isize::MIN } else { isize::MAX });
+                app.playback.step_by(by, len);
+            }
+            Self::GoToStep { step } => {
+                let len = app.steps();
+                app.playback.playing = false;
+                app.playback.go(step, len);
+            }
+            Self::Play { playing } => {
+                if app.playback.playing != playing {
+                    let len = app.steps();
+                    app.playback.toggle(len);
+                }
+            }
+            Self::Report => {}
+            Self::ExportScene => {
+                let scene = serde_json::to_string(&SavedState::capture_full(app))
+                    .map_err(|e| e.to_string())?;
+                return Ok(Some(scene));
+            }
+            Self::PanicForTest => {
+                if !debug_panic {
+                    return Err(
+                        "panic-for-test works only when the page's address has debug=panic"
+                            .to_owned(),
+                    );
+                }
+                #[expect(clippy::panic, reason = "what the browser test of a crash asks for")]
+                {
+                    panic!("panic-for-test: the page asked the lab to crash");
+                }
+            }
+        }
+        Ok(None)
+    }
+}
+
+/// The ray of the half shown.
+fn set_ray(app: &mut LabApp, origin: &[f64], direction: &[f64]) -> Result<(), String> {
+    if app.dimension == Dimension::Three {
+        let ray = Ray3::new(vec3("origin", origin)?, vec3("direction", direction)?)
+            .map_err(|e| format!("the ray: {e}"))?;
+        // A mesh still loading takes the ray once it has loaded.
+        if app.lab3d.pending.is_some() {
+            app.lab3d.placement.get_or_insert_default().ray = Some(ray);
+        } else {
+            app.lab3d.ray = Some(ray);
+        }
+    } else {
+        let origin = vec2("origin", origin)?;
+        let handles = RayHandles {
+            origin,
+            target: origin + vec2("direction", direction)?,
+        };
+        handles.ray().map_err(|e| format!("the ray: {e}"))?;
+        app.ray = Some(handles);
+    }
+    app.ask_about_ray();
+    Ok(())
+}
+
+/// The query point of the half shown.
+fn set_point(app: &mut LabApp, point: &[f64]) -> Result<(), String> {
+    if app.dimension == Dimension::Three {
+        let p = vec3("point", point)?;
+        if app.lab3d.pending.is_some() {
+            app.lab3d.placement.get_or_insert_default().point = Some(p);
+        } else {
+            app.lab3d.point = Some(p);
+        }
+    } else {
+        app.point = Some(vec2("point", point)?);
+    }
+    app.ask_about_point();
+    Ok(())
+}
+
+fn vec2(what: &str, n: &[f64]) -> Result<Vec2, String> {
+    match checked(what, n)?.as_slice() {
+        &[x, y] => Ok(Vec2::new(x, y)),
+        other => Err(format!(
+            "the {what} has {} numbers; the 2D view takes 2",
+            other.len()
+        )),
+    }
+}
+
+fn vec3(what: &str, n: &[f64]) -> Result<Vec3, String> {
+    match checked(what, n)?.as_slice() {
+        &[x, y, z] => Ok(Vec3::new(x, y, z)),
+        other => Err(format!(
+            "the {what} has {} numbers; the 3D view takes 3",
+            other.len()
+        )),
+    }
+}
+
+/// Finite numbers within the lab's range, as `f32`.
+fn checked(what: &str, n: &[f64]) -> Result<Vec<f32>, String> {
+    n.iter()
+        .map(|&x| {
+            if x.is_finite() && x.abs() <= f64::from(MAX_COORD) {
+                Ok(x as f32)
+            } else {
+                Err(format!(
+                    "the {what} has {x}; numbers must be finite and within ±{MAX_COORD:e}"
+                ))
+            }
+        })
+        .collect()
+}

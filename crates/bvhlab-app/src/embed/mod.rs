@@ -1,0 +1,226 @@
+//! Embedding the lab in a course page: the address's parameters choose what it opens with
+//! ([`params`]), and the page scripts it with `postMessage` ([`command`], [`Scripting`]).
+//!
+//! # The scripting API
+//! The page posts `{bvhlab: "command", id, command: {type: "set-ray", ...}}` to the lab's
+//! window (an `<iframe>`'s `contentWindow`). The lab accepts messages only from its own
+//! origin and from the origins its address names with `origin=`; others are ignored. Each
+//! command is answered, once the lab has applied it and its structures and recording are
+//! ready, with `{bvhlab: "reply", id, ok: true, report}` (the lab's [`Report`]: the scene,
+//! structure, answers, counters and playback) or `{bvhlab: "reply", id, ok: false, error}`.
+//! Commands are applied in the order they arrive. `web/bvhlab-embed.js` wraps this in
+//! promises; `web/embed.html` is a runnable example with two labs side by side.
+//!
+//! [`Report`]: crate::report::Report
+
+#[cfg(target_arch = "wasm32")]
+pub mod browser;
+pub mod command;
+pub mod params;
+
+use std::collections::VecDeque;
+
+pub use command::Command;
+pub use params::{PARAMETERS, StartParams};
+
+use crate::app::{Dimension, LabApp};
+
+/// How long a reply may wait for a build to finish, in seconds, before it is sent as an
+/// error ("still building").
+pub const REPLY_TIMEOUT: f64 = 60.0;
+
+/// What the page opens with.
+pub struct Start {
+    /// The lab.
+    pub app: LabApp,
+    /// What could not be used, for the status line.
+    pub message: Option<String>,
+    /// The saved state was there but could not be restored (keep it until the student
+    /// changes something, so that a newer lab version can still read it).
+    pub saved_failed: bool,
+}
+
+/// The lab the page opens with.
+///
+/// In order: a share link's fragment (`#s=...`), then the state saved in this browser under
+/// the parameters' [`StartParams::storage_key`] (unless `fresh=1`), then the parameters.
+/// Whatever fails says why in the status line; the rest still applies.
+pub fn start(fragment: Option<&str>, params: &StartParams, saved: Option<&str>) -> Start {
+    let link = fragment.filter(|f| f.trim().trim_start_matches('#').starts_with("s="));
+    let saved = saved.filter(|_| !params.fresh);
+    let mut problems = params.problems.clone();
+    let (mut app, message) = if link.is_some() || saved.is_some() {
+        crate::persist::startup(link, None, saved)
+    } else {
+        (LabApp::default(), None)
+    };
+    let failed = message.is_some();
+    if let Some(m) = message {
+        problems.insert(0, m);
+    }
+    // The parameters choose the starting state only when nothing else did.
+    if link.is_none() && (saved.is_none() || failed) {
+        let mut fresh = LabApp::default();
+        problems.extend(params.apply(&mut fresh));
+        app = fresh;
+    }
+    let message = (!problems.is_empty()).then(|| sentences(&problems));
+    if message.is_some() {
+        app.message.clone_from(&message);
+    }
+    Start {
+        app,
+        message,
+        saved_failed: failed && link.is_none(),
+    }
+}
+
+/// Sentences from message parts (each capitalized and ended with a full stop).
+fn sentences(parts: &[String]) -> String {
+    parts
+        .iter()
+        .map(|p| {
+            let mut chars = p.chars();
+            let first: String = chars
+                .next()
+                .map(|c| c.to_uppercase().collect())
+                .unwrap_or_default();
+            let rest: String = chars.collect();
+            let end = if rest.ends_with('.') { "" } else { "." };
+            format!("{first}{rest}{end}")
+        })
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+/// A command received, with where its reply goes (`T`: the page's window and origin on the
+/// web, anything in tests).
+struct Request<T> {
+    reply_to: T,
+    id: serde_json::Value,
+    command: Result<Command, String>,
+}
+
+/// A command applied (or refused), waiting for the lab to be ready before its reply goes.
+struct Waiting<T> {
+    reply_to: T,
+    id: serde_json::Value,
+    outcome: Result<Option<String>, String>,
+    since: f64,
+}
+
+/// The commands received and the replies owed, frame by frame: [`before_frame`] applies
+/// commands in order, [`after_frame`] hands out the replies that are ready.
+///
+/// [`before_frame`]: Scripting::before_frame
+/// [`after_frame`]: Scripting::after_frame
+pub struct Scripting<T> {
+    queue: VecDeque<Request<T>>,
+    waiting: Vec<Waiting<T>>,
+    debug_panic: bool,
+}
+
+impl<T> Scripting<T> {
+    /// No commands yet; `debug_panic` allows [`Command::PanicForTest`].
+    pub fn new(debug_panic: bool) -> Self {
+        Self {
+            queue: VecDeque::new(),
+            waiting: Vec::new(),
+            debug_panic,
+        }
+    }
+
+    /// Queues a command's JSON text, with its `id` (echoed in the reply).
+    pub fn receive(&mut self, reply_to: T, id: serde_json::Value, json: &str) {
+        self.queue.push_back(Request {
+            reply_to,
+            id,
+            command: Command::parse(json),
+        });
+    }
+
+    /// Whether anything waits (the caller keeps repainting).
+    pub fn pending(&self) -> bool {
+        !self.queue.is_empty() || !self.waiting.is_empty()
+    }
+
+    /// Applies the queued commands in order, up to one that needs the lab idle while it is
+    /// busy (it waits for a later frame). `now` is the time in seconds.
+    pub fn before_frame(&mut self, app: &mut LabApp, now: f64) {
+        while let Some(request) = self.queue.front() {
+            let ready = request
+                .command
+                .as_ref()
+                .map_or(true, |c| !c.needs_idle() || !busy(app));
+            if !ready {
+                break;
+            }
+            let Some(request) = self.queue.pop_front() else {
+                break;
+            };
+            if request.command.as_ref().is_ok_and(Command::needs_idle) {
+                // Playback counts the steps of the recording as it is now.
+                app.refresh();
+            }
+            let outcome = request
+                .command
+                .and_then(|command| command.apply(app, self.debug_panic));
+            self.waiting.push(Waiting {
+                reply_to: request.reply_to,
+                id: request.id,
+                outcome,
+                since: now,
+            });
+        }
+    }
+
+    /// The replies that are ready after a frame (the lab's report is then up to date): all
+    /// of them when the lab is idle, only refusals while it builds, and anything that waited
+    /// longer than [`REPLY_TIMEOUT`]. Each is the reply's JSON text.
+    pub fn after_frame(&mut self, app: &LabApp, now: f64) -> Vec<(T, String)> {
+        let idle = !busy(app);
+        let (ready, waiting): (Vec<_>, Vec<_>) = std::mem::take(&mut self.waiting)
+            .into_iter()
+            .partition(|w| idle || w.outcome.is_err() || now - w.since > REPLY_TIMEOUT);
+        self.waiting = waiting;
+        ready
+            .into_iter()
+            .map(|w| {
+                let outcome = if idle {
+                    w.outcome
+                } else {
+                    w.outcome.and(Err(format!(
+                        "the lab is still building after {REPLY_TIMEOUT} s; ask for a report later"
+                    )))
+                };
+                (w.reply_to, reply(&w.id, outcome, app))
+            })
+            .collect()
+    }
+}
+
+/// Whether the lab is loading or building (3D builds run over several frames).
+fn busy(app: &LabApp) -> bool {
+    app.dimension == Dimension::Three && app.lab3d.busy()
+}
+
+/// A reply's JSON text. The report is written as the page's `data-report` has it (numbers as
+/// the shortest decimals of their `f32`s), so both read the same.
+fn reply(id: &serde_json::Value, outcome: Result<Option<String>, String>, app: &LabApp) -> String {
+    match outcome {
+        Ok(extra) => {
+            let scene = extra.map_or_else(String::new, |scene| format!(r#","scene":{scene}"#));
+            format!(
+                r#"{{"bvhlab":"reply","id":{id},"ok":true,"report":{}{scene}}}"#,
+                app.report.json()
+            )
+        }
+        Err(error) => serde_json::json!({
+            "bvhlab": "reply",
+            "id": id,
+            "ok": false,
+            "error": error,
+        })
+        .to_string(),
+    }
+}

@@ -1,0 +1,446 @@
+//! The page address's parameters (`index.html?preset=kd-tree&structure=kd-tree&ray=...`): how
+//! a course page chooses what an embedded lab opens with. Every parameter is listed in
+//! [`PARAMETERS`]; a value the lab cannot use, or a parameter it does not know, is named in
+//! the status line and the rest still applies.
+
+use bvhlab::Ray3;
+use bvhlab::glam::{Vec2, Vec3};
+
+use crate::app::{Dimension, LabApp, RayHandles};
+use crate::lab3d::Placement3d;
+use crate::lab3d::mesh::MeshSource;
+use crate::persist::{MAX_COORD, STORAGE_KEY, StructureName, TaskName};
+use crate::presets::Preset;
+
+/// The parameters the lab reads, with what each does (the README's table is this list).
+pub const PARAMETERS: [(&str, &str); 11] = [
+    (
+        "preset",
+        "a 2D scene: one of the presets' slugs (kd-tree, quadtree, 10k, ...)",
+    ),
+    (
+        "mesh",
+        "opens the 3D view on a built-in mesh (cube, sphere, torus, bunny, ...)",
+    ),
+    (
+        "structure",
+        "the structure: brute-force, sphere-tree, aabb-tree, obb-tree, grid, bsp, quadtree, kd-tree",
+    ),
+    (
+        "task",
+        "what is stepped through: first-hit, any-hit, all-hits, nearest, range, build",
+    ),
+    (
+        "ray",
+        "the ray: origin and direction, x,y,dx,dy in 2D or x,y,z,dx,dy,dz in 3D",
+    ),
+    ("point", "the query point: x,y in 2D or x,y,z in 3D"),
+    ("step", "the playback step to show (0 is the start)"),
+    (
+        "panels",
+        "the panels shown beside the view, comma-separated: controls, stepper, tree (none: panels=)",
+    ),
+    (
+        "lab",
+        "a name for this lab's saved state, so that two labs on one page keep their own",
+    ),
+    (
+        "origin",
+        "an origin allowed to script the lab with postMessage (repeat for more); the lab's own origin always may",
+    ),
+    (
+        "fresh",
+        "1: start from these parameters, not from the state saved in this browser",
+    ),
+];
+
+/// The address's parameters, read.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct StartParams {
+    /// `preset=`.
+    pub preset: Option<Preset>,
+    /// `mesh=`: a built-in mesh's slug.
+    pub mesh: Option<String>,
+    /// `structure=`.
+    pub structure: Option<StructureName>,
+    /// `task=`.
+    pub task: Option<TaskName>,
+    /// `ray=`: 4 or 6 numbers.
+    pub ray: Option<Vec<f32>>,
+    /// `point=`: 2 or 3 numbers.
+    pub point: Option<Vec<f32>>,
+    /// `step=`.
+    pub step: Option<usize>,
+    /// `panels=`: which of the controls, the stepper and the tree diagram are shown.
+    pub panels: Option<Panels>,
+    /// `lab=`.
+    pub lab: Option<String>,
+    /// `origin=`, each.
+    pub origins: Vec<String>,
+    /// `fresh=1`.
+    pub fresh: bool,
+    /// `debug=panic`: the scripting API's `panic-for-test` command is allowed (for the
+    /// browser test of what a crash shows).
+    pub debug_panic: bool,
+    /// What could not be read, one sentence each.
+    pub problems: Vec<String>,
+}
+
+/// The side panels an embedding page asks for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[allow(clippy::struct_excessive_bools)] // independent switches
+pub struct Panels {
+    /// The controls (left).
+    pub controls: bool,
+    /// "Step through" (right).
+    pub stepper: bool,
+    /// The tree diagram (below the 2D canvas).
+    pub tree: bool,
+}
+
+impl Panels {
+    fn parse(value: &str) -> Result<Self, String> {
+        let mut panels = Self {
+            controls: false,
+            stepper: false,
+            tree: false,
+        };
+        for name in value.split(',').map(str::trim).filter(|n| !n.is_empty()) {
+            match name {
+                "controls" => panels.controls = true,
+                "stepper" => panels.stepper = true,
+                "tree" => panels.tree = true,
+                other => {
+                    return Err(format!(
+                        "the address's panels has \"{}\"; the panels are controls, stepper and tree",
+                        short(other)
+                    ));
+                }
+            }
+        }
+        Ok(panels)
+    }
+}
+
+/// The longest value read, in characters (an address can be long; a status line cannot).
+const MAX_VALUE_CHARS: usize = 400;
+
+impl StartParams {
+    /// Reads the address's query string (with or without its leading `?`).
+    pub fn parse(search: &str) -> Self {
+        let mut params = Self::default();
+        for pair in search.trim_start_matches('?').split('&') {
+            if pair.is_empty() {
+                continue;
+            }
+            let (name, value) = pair.split_once('=').unwrap_or((pair, ""));
+            let name = decode(name);
+            let value = decode(value);
+            if value.chars().count() > MAX_VALUE_CHARS {
+                params.problems.push(format!(
+                    "the address's \"{}\" is longer than {MAX_VALUE_CHARS} characters",
+                    short(&name)
+                ));
+                continue;
+            }
+            if let Err(problem) = params.read(&name, &value) {
+                params.problems.push(problem);
+            }
+        }
+        params
+    }
+
+    /// Reads one parameter.
+    fn read(&mut self, name: &str, value: &str) -> Result<(), String> {
+        match name {
+            "preset" => {
+                self.preset = Some(Preset::from_slug(value).ok_or_else(|| {
+                    let known: Vec<&str> = Preset::ALL.iter().map(|p| p.slug()).collect();
+                    format!(
+                        "the address asks for the preset \"{}\"; the lab has {}",
+                        short(value),
+                        known.join(", ")
+                    )
+                })?);
+            }
+            "mesh" => {
+                let known = bvhlab_meshio::builtin::list();
+                if !known.iter().any(|b| b.slug == value) {
+                    let slugs: Vec<&str> = known.iter().map(|b| b.slug).collect();
+                    return Err(format!(
+                        "the address asks for the mesh \"{}\"; the lab has {}",
+                        short(value),
+                        slugs.join(", ")
+                    ));
+                }
+                self.mesh = Some(value.to_owned());
+            }
+            "structure" => self.structure = Some(named("structure", value)?),
+            "task" => self.task = Some(named("task", value)?),
+            "ray" => self.ray = Some(numbers("ray", value, &[4, 6])?),
+            "point" => self.point = Some(numbers("point", value, &[2, 3])?),
+            "step" => {
+                self.step = Some(value.parse().map_err(|_| {
+                    format!(
+                        "the address's step \"{}\" is not a whole number",
+                        short(value)
+                    )
+                })?);
+            }
+            "panels" => self.panels = Some(Panels::parse(value)?),
+            "lab" => self.lab = Some(value.to_owned()),
+            "origin" => self.origins.push(origin(value)?),
+            "fresh" => self.fresh = value == "1" || value == "true",
+            "debug" => self.debug_panic = value == "panic",
+            other => {
+                let known: Vec<&str> = PARAMETERS.iter().map(|(n, _)| *n).collect();
+                return Err(format!(
+                    "the address's parameter \"{}\" is not one the lab reads ({})",
+                    short(other),
+                    known.join(", ")
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// The `localStorage` key this lab's state is kept under: [`STORAGE_KEY`], followed by
+    /// `?lab=NAME` when named, else by the parameters that choose the starting state. So two
+    /// labs embedded with different scenes keep their own work, and a lab opened with new
+    /// parameters does not come back as an older one.
+    pub fn storage_key(&self) -> String {
+        if let Some(lab) = &self.lab {
+            return format!("{STORAGE_KEY}?lab={lab}");
+        }
+        let mut parts = Vec::new();
+        if let Some(p) = self.preset {
+            parts.push(format!("preset={}", p.slug()));
+        }
+        if let Some(m) = &self.mesh {
+            parts.push(format!("mesh={m}"));
+        }
+        if let Some(s) = self.structure {
+            parts.push(format!("structure={}", stored_name(&s)));
+        }
+        if let Some(t) = self.task {
+            parts.push(format!("task={}", stored_name(&t)));
+        }
+        for (name, list) in [("ray", &self.ray), ("point", &self.point)] {
+            if let Some(list) = list {
+                let text: Vec<String> = list.iter().map(f32::to_string).collect();
+                parts.push(format!("{name}={}", text.join(",")));
+            }
+        }
+        if let Some(step) = self.step {
+            parts.push(format!("step={step}"));
+        }
+        if parts.is_empty() {
+            STORAGE_KEY.to_owned()
+        } else {
+            format!("{STORAGE_KEY}?{}", parts.join("&"))
+        }
+    }
+
+    /// Puts what the parameters ask for into `app` (a fresh lab), and returns what could not
+    /// be used, one sentence each.
+    pub fn apply(&self, app: &mut LabApp) -> Vec<String> {
+        let mut problems = Vec::new();
+        if let Some(preset) = self.preset {
+            app.load_preset(preset);
+        }
+        if let Some(slug) = &self.mesh {
+            app.dimension = Dimension::Three;
+            app.lab3d.open(MeshSource::Builtin(slug.clone()));
+        }
+        let three = app.dimension == Dimension::Three;
+        if let Some(panels) = self.panels {
+            app.show_controls = panels.controls;
+            app.show_stepper = panels.stepper;
+            app.show_tree = panels.tree;
+        }
+        if let Some(structure) = self.structure {
+            let kind = structure.into();
+            if three {
+                app.lab3d.settings.kind = kind;
+            } else {
+                app.lane.settings.kind = kind;
+            }
+        }
+        if let Some(task) = self.task {
+            app.task = task.into();
+        }
+        let mut placement = Placement3d::default();
+        if let Some(numbers) = &self.ray {
+            let applied = if three {
+                ray3(numbers).map(|r| placement.ray = Some(r))
+            } else {
+                ray2(numbers).map(|r| app.ray = Some(r))
+            };
+            problems.extend(applied.err());
+            if self.task.is_none() {
+                app.ask_about_ray();
+            }
+        }
+        if let Some(numbers) = &self.point {
+            let applied = match (three, numbers.as_slice()) {
+                (false, &[x, y]) => {
+                    app.point = Some(Vec2::new(x, y));
+                    Ok(())
+                }
+                (true, &[x, y, z]) => {
+                    placement.point = Some(Vec3::new(x, y, z));
+                    Ok(())
+                }
+                _ => Err(format!(
+                    "the address's point has {} numbers; the {} view takes {}",
+                    numbers.len(),
+                    if three { "3D" } else { "2D" },
+                    if three { 3 } else { 2 }
+                )),
+            };
+            problems.extend(applied.err());
+            if self.task.is_none() && self.ray.is_none() {
+                app.ask_about_point();
+            }
+        }
+        if three && placement != Placement3d::default() {
+            app.lab3d.placement = Some(placement);
+        }
+        if let Some(step) = self.step {
+            app.playback.step = step;
+            app.playback.at_end = false;
+        }
+        problems
+    }
+}
+
+/// A 2D ray from `x,y,dx,dy`.
+fn ray2(n: &[f32]) -> Result<RayHandles, String> {
+    let &[x, y, dx, dy] = n else {
+        return Err(format!(
+            "the address's ray has {} numbers; the 2D view takes 4 (x,y,dx,dy)",
+            n.len()
+        ));
+    };
+    let handles = RayHandles {
+        origin: Vec2::new(x, y),
+        target: Vec2::new(x + dx, y + dy),
+    };
+    handles
+        .ray()
+        .map(|_| handles)
+        .map_err(|e| format!("the address's ray: {e}"))
+}
+
+/// A 3D ray from `x,y,z,dx,dy,dz`.
+fn ray3(n: &[f32]) -> Result<Ray3, String> {
+    let &[x, y, z, dx, dy, dz] = n else {
+        return Err(format!(
+            "the address's ray has {} numbers; the 3D view takes 6 (x,y,z,dx,dy,dz)",
+            n.len()
+        ));
+    };
+    Ray3::new(Vec3::new(x, y, z), Vec3::new(dx, dy, dz))
+        .map_err(|e| format!("the address's ray: {e}"))
+}
+
+/// One of the scene format's names (`kd-tree`, `first-hit`), read as the format reads it.
+fn named<T: serde::de::DeserializeOwned>(what: &str, value: &str) -> Result<T, String> {
+    serde_json::from_value(serde_json::Value::String(value.to_owned()))
+        .map_err(|e| format!("the address's {what}: {e}"))
+}
+
+/// Comma-separated finite numbers within the lab's range, as many as one of `counts`.
+fn numbers(what: &str, value: &str, counts: &[usize]) -> Result<Vec<f32>, String> {
+    let list = value
+        .split(',')
+        .map(|text| {
+            let x: f32 = text.trim().parse().map_err(|_| {
+                format!(
+                    "the address's {what} has \"{}\", which is not a number",
+                    short(text)
+                )
+            })?;
+            if x.is_finite() && x.abs() <= MAX_COORD {
+                Ok(x)
+            } else {
+                Err(format!(
+                    "the address's {what} has {x}; numbers must be finite and within ±{MAX_COORD:e}"
+                ))
+            }
+        })
+        .collect::<Result<Vec<f32>, String>>()?;
+    if counts.contains(&list.len()) {
+        Ok(list)
+    } else {
+        Err(format!(
+            "the address's {what} has {} numbers; it takes {}",
+            list.len(),
+            counts
+                .iter()
+                .map(usize::to_string)
+                .collect::<Vec<_>>()
+                .join(" or ")
+        ))
+    }
+}
+
+/// An origin as browsers write `MessageEvent.origin`: scheme, host and port, no path.
+fn origin(value: &str) -> Result<String, String> {
+    let value = value.trim_end_matches('/');
+    let (scheme, rest) = value.split_once("://").unwrap_or(("", ""));
+    let valid = matches!(scheme, "http" | "https")
+        && !rest.is_empty()
+        && !rest.contains(['/', '?', '#', '@', ' '])
+        && rest != "*";
+    if valid {
+        Ok(value.to_owned())
+    } else {
+        Err(format!(
+            "the address's origin \"{}\" is not an origin like https://course.example.edu (no \
+             path, no wildcard)",
+            short(value)
+        ))
+    }
+}
+
+/// Percent-decoding (and `+` as a space), as `URLSearchParams` reads a query; a malformed
+/// escape stays as written, and bytes that are not UTF-8 become U+FFFD.
+pub fn decode(text: &str) -> String {
+    let bytes = text.as_bytes();
+    let mut out = Vec::with_capacity(bytes.len());
+    let mut i = 0;
+    while i < bytes.len() {
+        match bytes[i] {
+            b'+' => out.push(b' '),
+            b'%' if i + 2 < bytes.len()
+                && bytes[i + 1].is_ascii_hexdigit()
+                && bytes[i + 2].is_ascii_hexdigit() =>
+            {
+                let digit = |b: u8| (b as char).to_digit(16).unwrap_or(0) as u8;
+                out.push(digit(bytes[i + 1]) * 16 + digit(bytes[i + 2]));
+                i += 3;
+                continue;
+            }
+            byte => out.push(byte),
+        }
+        i += 1;
+    }
+    String::from_utf8_lossy(&out).into_owned()
+}
+
+/// The word the scene format stores for a name (`kd-tree`).
+fn stored_name<T: serde::Serialize>(name: &T) -> String {
+    match serde_json::to_value(name) {
+        Ok(serde_json::Value::String(word)) => word,
+        _ => String::new(),
+    }
+}
+
+/// `text` cut for a message.
+fn short(text: &str) -> String {
+    match text.char_indices().nth(40) {
+        Some((cut, _)) => format!("{}…", &text[..cut]),
+        None => text.to_owned(),
+    }
+}

@@ -1,0 +1,420 @@
+//! Embedding: the address's parameters, where the lab starts from, the 3D half kept across
+//! reloads, and the scripting API driven command by command through real frames.
+
+mod common;
+
+use bvhlab::glam::{Vec2, Vec3};
+use bvhlab_app::LabApp;
+use bvhlab_app::app::Dimension;
+use bvhlab_app::embed::{PARAMETERS, Scripting, StartParams, start};
+use bvhlab_app::persist::{STORAGE_KEY, SavedState, StructureName, TaskName, to_file};
+use bvhlab_app::presets::Preset;
+use bvhlab_app::structures::StructureKind;
+use egui_kittest::Harness;
+
+/// A harness over `app`, run until it settles.
+fn harness(app: LabApp) -> Harness<'static, LabApp> {
+    let mut h = Harness::builder()
+        .with_size(common::WINDOW)
+        .build_ui_state(|ui, app: &mut LabApp| app.show(ui), app);
+    h.run();
+    h
+}
+
+/// Frames until the 3D half is idle (loaded and built), or a failure.
+fn until_idle(h: &mut Harness<'_, LabApp>) {
+    for _ in 0..2_000 {
+        if !h.state().lab3d.busy() && h.state().lab3d.built.is_some() {
+            h.run();
+            return;
+        }
+        h.step();
+    }
+    panic!("the 3D half did not finish loading and building in 2,000 frames");
+}
+
+#[test]
+fn every_documented_parameter_is_read_and_a_typo_is_named() {
+    let p = StartParams::parse(
+        "?preset=quadtree&structure=kd-tree&task=nearest&ray=1,2,3,4&point=5,6&step=7\
+         &lab=left&origin=https%3A%2F%2Fcourse.example.edu&fresh=1&panels=stepper",
+    );
+    assert_eq!(p.problems, Vec::<String>::new());
+    assert_eq!(p.preset, Some(Preset::QuadtreeHandful));
+    assert_eq!(p.structure, Some(StructureName::KdTree));
+    assert_eq!(p.task, Some(TaskName::Nearest));
+    assert_eq!(p.ray, Some(vec![1.0, 2.0, 3.0, 4.0]));
+    assert_eq!(p.point, Some(vec![5.0, 6.0]));
+    assert_eq!(p.step, Some(7));
+    assert_eq!(p.lab.as_deref(), Some("left"));
+    assert_eq!(p.origins, vec!["https://course.example.edu".to_owned()]);
+    assert!(p.fresh);
+    let panels = p.panels.expect("panels");
+    assert!(panels.stepper && !panels.controls && !panels.tree);
+    // The documented list is what the parser knows (debug is for the browser test only).
+    let names: Vec<&str> = PARAMETERS.iter().map(|(n, _)| *n).collect();
+    for name in [
+        "preset",
+        "mesh",
+        "structure",
+        "task",
+        "ray",
+        "point",
+        "step",
+        "lab",
+        "origin",
+        "fresh",
+        "panels",
+    ] {
+        assert!(names.contains(&name), "{name} is documented");
+    }
+
+    let bad = StartParams::parse(
+        "structur=kd-tree&structure=octopus&ray=1,2,nan,4&point=1e39,0&step=-1&origin=*\
+         &origin=https://a.example/path&mesh=teapot&preset=&panels=sidebar",
+    );
+    let text = bad.problems.join("\n");
+    for part in [
+        "\"structur\" is not one the lab reads",
+        "octopus",
+        "has NaN",
+        "within ±1e15",
+        "step \"-1\" is not a whole number",
+        "\"*\" is not an origin",
+        "\"https://a.example/path\" is not an origin",
+        "mesh \"teapot\"",
+        "preset \"\"",
+        "\"sidebar\"",
+    ] {
+        assert!(
+            text.contains(part),
+            "a problem names {part:?}; problems:\n{text}"
+        );
+    }
+    assert_eq!(bad.problems.len(), 10, "{text}");
+    assert_eq!(bad.structure, None, "a bad value is not used");
+}
+
+#[test]
+fn percent_escapes_are_decoded_as_browsers_do() {
+    use bvhlab_app::embed::params::decode;
+    assert_eq!(decode("a%20b+c"), "a b c");
+    assert_eq!(decode("%E2%9C%93"), "✓");
+    assert_eq!(decode("100%"), "100%", "a cut escape stays");
+    assert_eq!(decode("%zz%4"), "%zz%4");
+    assert_eq!(decode("%FF"), "\u{fffd}", "not UTF-8");
+}
+
+#[test]
+fn two_labs_with_different_scenes_keep_their_state_apart() {
+    let plain = StartParams::parse("");
+    let a = StartParams::parse("preset=kd-tree&structure=kd-tree");
+    let b = StartParams::parse("preset=kd-tree&structure=aabb-tree");
+    let named = StartParams::parse("lab=left&preset=kd-tree");
+    assert_eq!(plain.storage_key(), STORAGE_KEY);
+    assert_ne!(a.storage_key(), b.storage_key());
+    assert_ne!(a.storage_key(), plain.storage_key());
+    assert_eq!(named.storage_key(), format!("{STORAGE_KEY}?lab=left"));
+    // Who may script the lab, and `fresh`, do not change whose state it is.
+    let same =
+        StartParams::parse("preset=kd-tree&structure=kd-tree&origin=https://x.example&fresh=1");
+    assert_eq!(same.storage_key(), a.storage_key());
+}
+
+#[test]
+fn parameters_set_the_scene_structure_ray_and_step_and_the_answer_is_brute_forces() {
+    let params = StartParams::parse("preset=kd-tree&structure=aabb-tree&ray=0,4.5,1,0&step=3");
+    let started = start(None, &params, None);
+    assert_eq!(started.message, None);
+    let mut h = harness(started.app);
+    let app = h.state();
+    assert_eq!(app.preset, Preset::KdHandful);
+    assert_eq!(app.lane.settings.kind, StructureKind::AabbTree);
+    let ray = app.ray.expect("the ray").ray().expect("a valid ray");
+    assert_eq!(ray.origin(), Vec2::new(0.0, 4.5));
+    assert_eq!(ray.dir(), Vec2::new(1.0, 0.0));
+    assert_eq!(app.playback.step, 3);
+    let query = app.report.query.clone().expect("the ray's report");
+    // Brute force, by hand: every segment's hit, the nearest.
+    let brute = app
+        .scene
+        .primitives()
+        .segments
+        .iter()
+        .enumerate()
+        .filter_map(|(i, s)| s.ray_hit(&ray).map(|t| (i, t)))
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .expect("the ray hits the scene");
+    let hit = query.hit.expect("a hit");
+    assert_eq!((hit.primitive, hit.t), brute);
+    assert!(query.agrees);
+    h.step();
+    assert_eq!(h.state().report.playback[0].step, 3);
+}
+
+#[test]
+fn a_saved_state_wins_over_the_parameters_unless_fresh_and_a_broken_one_is_kept() {
+    let params = StartParams::parse("preset=kd-tree&structure=grid");
+    let mut edited = LabApp::with_preset(Preset::QuadtreeHandful);
+    edited.lane.settings.kind = StructureKind::Bsp;
+    let saved = serde_json::to_string(&SavedState::capture(&edited)).expect("json");
+
+    let restored = start(None, &params, Some(&saved));
+    assert_eq!(restored.app.preset, Preset::QuadtreeHandful);
+    assert_eq!(restored.app.lane.settings.kind, StructureKind::Bsp);
+    assert!(!restored.saved_failed);
+
+    let fresh = start(
+        None,
+        &StartParams::parse("preset=kd-tree&structure=grid&fresh=1"),
+        Some(&saved),
+    );
+    assert_eq!(fresh.app.preset, Preset::KdHandful);
+    assert_eq!(fresh.app.lane.settings.kind, StructureKind::Grid);
+
+    let broken = start(None, &params, Some("{\"version\": 1, \"k\": \"many\""));
+    assert!(
+        broken.saved_failed,
+        "kept until the student changes something"
+    );
+    assert_eq!(
+        broken.app.lane.settings.kind,
+        StructureKind::Grid,
+        "the parameters apply"
+    );
+    let message = broken.message.expect("a message");
+    assert!(message.contains("could not be restored"), "{message}");
+}
+
+#[test]
+fn the_3d_half_comes_back_after_a_reload_with_its_mesh_camera_ray_and_point() {
+    let params =
+        StartParams::parse("mesh=torus&structure=kd-tree&ray=0,0,5,0.1,0.05,-1&point=0.5,0.5,0.5");
+    let started = start(None, &params, None);
+    assert_eq!(started.message, None);
+    let mut h = harness(started.app);
+    until_idle(&mut h);
+    {
+        let lab = &h.state().lab3d;
+        assert_eq!(h.state().dimension, Dimension::Three);
+        assert_eq!(
+            lab.mesh.as_ref().and_then(|m| m.slug.as_deref()),
+            Some("torus")
+        );
+        assert_eq!(lab.settings.kind, StructureKind::KdTree);
+        let ray = lab.ray.expect("the address's ray, not the default one");
+        assert_eq!(ray.origin(), Vec3::new(0.0, 0.0, 5.0));
+        assert_eq!(lab.point, Some(Vec3::splat(0.5)));
+    }
+    // The student turns the camera and moves the point; the lab saves; the page reloads.
+    h.state_mut().lab3d.camera.yaw += 0.7;
+    h.state_mut().lab3d.point = Some(Vec3::new(-0.25, 0.5, 0.75));
+    h.run();
+    let before = SavedState::capture(h.state());
+    let saved = serde_json::to_string(&before).expect("json");
+    let again = start(None, &params, Some(&saved));
+    let mut h2 = harness(again.app);
+    until_idle(&mut h2);
+    let (a, b) = (&h.state().lab3d, &h2.state().lab3d);
+    assert_eq!(h2.state().dimension, Dimension::Three);
+    assert_eq!(
+        b.mesh.as_ref().and_then(|m| m.slug.as_deref()),
+        Some("torus")
+    );
+    assert_eq!(b.settings, a.settings);
+    assert_eq!(b.camera, a.camera, "the turned camera, not a fresh framing");
+    assert_eq!(b.ray, a.ray);
+    assert_eq!(b.point, a.point);
+    assert_eq!(b.radius, a.radius);
+    assert_eq!(SavedState::capture(h2.state()), before);
+    // The answers are the same too.
+    assert_eq!(
+        h2.state()
+            .report
+            .three
+            .as_ref()
+            .map(|t| (t.hit.clone(), t.cost)),
+        h.state()
+            .report
+            .three
+            .as_ref()
+            .map(|t| (t.hit.clone(), t.cost))
+    );
+}
+
+#[test]
+fn a_file_mesh_comes_back_as_its_name_with_a_message_and_everything_else() {
+    let mut h = harness(LabApp {
+        dimension: Dimension::Three,
+        ..LabApp::default()
+    });
+    until_idle(&mut h);
+    let mut state = SavedState::capture(h.state());
+    let three = state.three.as_mut().expect("the 3D half");
+    three.mesh = bvhlab_app::persist::MeshState::File("my-part.stl".to_owned());
+    three.structure.kind = StructureName::Bsp;
+    let json = serde_json::to_string(&state).expect("json");
+    let started = start(None, &StartParams::default(), Some(&json));
+    let mut h2 = harness(started.app);
+    until_idle(&mut h2);
+    let lab = &h2.state().lab3d;
+    assert_eq!(lab.settings.kind, StructureKind::Bsp);
+    let message = h2.state().message.clone().unwrap_or_default();
+    assert!(
+        message.contains("my-part.stl") && message.contains("drop it"),
+        "{message}"
+    );
+}
+
+#[test]
+fn export_then_import_gives_the_same_state_in_both_halves() {
+    let mut h = harness(LabApp::with_preset(Preset::RandomSegments));
+    h.state_mut().ray = Some(bvhlab_app::app::RayHandles {
+        origin: Vec2::new(-1.0, 3.0),
+        target: Vec2::new(4.0, 5.0),
+    });
+    h.state_mut().dimension = Dimension::Three;
+    h.run();
+    until_idle(&mut h);
+    h.state_mut().lab3d.settings.leaf_size = 2;
+    h.run();
+    let file = to_file(h.state());
+    let mut other = LabApp::default();
+    bvhlab_app::persist::open_file(&mut other, &file).expect("the exported file opens");
+    assert_eq!(
+        SavedState::capture_full(&other),
+        SavedState::capture_full(h.state())
+    );
+}
+
+/// A test's stand-in for the window a reply goes to.
+type Sent = Vec<(u32, serde_json::Value)>;
+
+fn replies(scripting: &mut Scripting<u32>, h: &mut Harness<'_, LabApp>, sent: &mut Sent) {
+    for frame in 0..2_000 {
+        let now = f64::from(frame) * 0.016;
+        scripting.before_frame(h.state_mut(), now);
+        h.step();
+        for (to, json) in scripting.after_frame(h.state(), now) {
+            sent.push((to, serde_json::from_str(&json).expect("a reply is JSON")));
+        }
+        if !scripting.pending() {
+            return;
+        }
+    }
+    panic!("replies still owed after 2,000 frames");
+}
+
+#[test]
+fn commands_are_applied_in_order_and_answered_with_the_report() {
+    let mut h = harness(LabApp::with_preset(Preset::KdHandful));
+    let mut scripting = Scripting::new(false);
+    let mut sent = Sent::new();
+    let id = |n: u32| serde_json::json!(n);
+    scripting.receive(
+        1,
+        id(1),
+        r#"{"type": "set-structure", "structure": "kd-tree"}"#,
+    );
+    scripting.receive(
+        1,
+        id(2),
+        r#"{"type": "set-ray", "origin": [0, 4.5], "direction": [1, 0]}"#,
+    );
+    scripting.receive(1, id(3), r#"{"type": "go-to-step", "step": 0}"#);
+    scripting.receive(1, id(4), r#"{"type": "step", "by": 2}"#);
+    scripting.receive(
+        2,
+        id(5),
+        r#"{"type": "set-structure", "structure": "octopus"}"#,
+    );
+    scripting.receive(
+        2,
+        id(6),
+        r#"{"type": "set-ray", "origin": [0, 0], "direction": [0, 0]}"#,
+    );
+    scripting.receive(2, id(7), r#"{"type": "panic-for-test"}"#);
+    scripting.receive(2, id(8), "not json");
+    replies(&mut scripting, &mut h, &mut sent);
+    assert_eq!(sent.len(), 8, "{sent:#?}");
+    let by_id = |n: u64| {
+        sent.iter()
+            .find(|(_, r)| r["id"] == n)
+            .expect("reply")
+            .clone()
+    };
+    for n in 1..=4 {
+        let (to, reply) = by_id(n);
+        assert_eq!(to, 1);
+        assert_eq!(reply["bvhlab"], "reply");
+        assert_eq!(reply["ok"], true, "{reply}");
+    }
+    let (_, stepped) = by_id(4);
+    let lane = &stepped["report"]["playback"][0];
+    assert_eq!(lane["structure"], "k-d tree");
+    assert_eq!(lane["step"], 2);
+    assert_eq!(stepped["report"]["query"]["agrees"], true);
+    assert_eq!(
+        stepped["report"]["query"]["ray"],
+        serde_json::json!([0.0, 4.5, 1.0, 0.0])
+    );
+    for (n, part) in [
+        (5, "octopus"),
+        (6, "zero"),
+        (7, "debug=panic"),
+        (8, "not a command"),
+    ] {
+        let (to, reply) = by_id(n);
+        assert_eq!(to, 2);
+        assert_eq!(reply["ok"], false);
+        let error = reply["error"].as_str().unwrap_or_default();
+        assert!(error.to_lowercase().contains(part), "reply {n}: {error}");
+    }
+    // The refused commands changed nothing.
+    assert_eq!(h.state().lane.settings.kind, StructureKind::KdTree);
+    assert_eq!(h.state().ray.map(|r| r.origin), Some(Vec2::new(0.0, 4.5)));
+}
+
+#[test]
+fn a_reply_waits_for_a_3d_build_and_export_scene_gives_a_scene_that_loads() {
+    let mut h = harness(LabApp::default());
+    let mut scripting = Scripting::new(false);
+    let mut sent = Sent::new();
+    scripting.receive(
+        0,
+        serde_json::json!("a"),
+        r#"{"type": "load-mesh", "mesh": "sphere"}"#,
+    );
+    scripting.receive(
+        0,
+        serde_json::json!("b"),
+        r#"{"type": "set-ray", "origin": [0, 0, 5], "direction": [0, 0, -1]}"#,
+    );
+    scripting.receive(
+        0,
+        serde_json::json!("c0"),
+        r#"{"type": "go-to-step", "step": 0}"#,
+    );
+    scripting.receive(0, serde_json::json!("c"), r#"{"type": "step", "by": 4}"#);
+    scripting.receive(0, serde_json::json!("d"), r#"{"type": "export-scene"}"#);
+    replies(&mut scripting, &mut h, &mut sent);
+    assert_eq!(sent.len(), 5);
+    for (_, reply) in &sent {
+        assert_eq!(reply["ok"], true, "{reply}");
+        // Every reply came after the build: the report has the answer.
+        assert!(reply["report"]["three"]["hit"].is_object(), "{reply}");
+        assert_eq!(reply["report"]["three"]["mesh"], "UV sphere");
+    }
+    assert_eq!(sent[3].1["report"]["playback"][0]["step"], 4);
+    let scene = sent[4].1["scene"].clone();
+    let mut other = harness(LabApp::default());
+    let mut scripting = Scripting::new(false);
+    let mut sent = Sent::new();
+    let command = serde_json::json!({"type": "load-scene", "scene": scene}).to_string();
+    scripting.receive(0, serde_json::json!(1), &command);
+    replies(&mut scripting, &mut other, &mut sent);
+    assert_eq!(sent[0].1["ok"], true, "{}", sent[0].1);
+    until_idle(&mut other);
+    assert_eq!(other.state().lab3d.ray, h.state().lab3d.ray);
+    assert_eq!(other.state().dimension, Dimension::Three);
+}
