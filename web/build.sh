@@ -32,7 +32,9 @@ if [ "$(wasm-bindgen --version 2>/dev/null || true)" != "wasm-bindgen $version" 
   cargo install wasm-bindgen-cli --version "$version"
 fi
 
-cargo build -p bvhlab-app --release --target wasm32-unknown-unknown
+# Without the symbol names (the wasm's "name" section, 1.4 MB of the 11.7 MB): a panic's
+# message still names the file and line.
+CARGO_PROFILE_RELEASE_STRIP=symbols cargo build -p bvhlab-app --release --target wasm32-unknown-unknown
 wasm=target/wasm32-unknown-unknown/release/bvhlab-app.wasm
 
 rm -rf dist
