@@ -146,6 +146,13 @@ where
     }
     let want = brute.ray_first_hit(ray, t_max);
     let got = bvh.ray_first_hit(ray, t_max);
+    // The unobserved query takes its own, faster walk: it must give the observed answer bit
+    // for bit.
+    assert_eq!(
+        got,
+        bvh.ray_first_hit_observed(ray, t_max, &mut ()).answer,
+        "{name}: the fast first hit differs from the observed one, {ray:?}, t_max {t_max}"
+    );
     if got != want && want.as_ref().is_none_or(plausible) {
         let tie = match (got, want) {
             (Some(g), Some(w)) => {

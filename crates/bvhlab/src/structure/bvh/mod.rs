@@ -80,6 +80,7 @@
 mod build;
 mod build_job;
 mod build_log;
+mod fast_ray;
 mod fit_sliced;
 mod fit_sliced_obb;
 mod fit_sliced_sphere;
@@ -174,6 +175,12 @@ where
         observer: &mut O,
     ) -> Traced<Option<Hit>> {
         self.first_hit(ray, t_max, observer)
+    }
+
+    /// The unobserved walk (`fast_ray`): the observed one's answer, without its bookkeeping.
+    #[inline]
+    fn ray_first_hit(&self, ray: &Ray<PointOf<Self>>, t_max: f32) -> Option<Hit> {
+        self.first_hit_fast(ray, t_max)
     }
 
     fn ray_any_hit_observed<O: Observer<PointOf<Self>>>(

@@ -1,0 +1,161 @@
+//! Single-threaded speed of the AABB tree on a shared mesh (issue 7's workload): binned SAH
+//! build time and SAH cost, ray first hit on coherent and incoherent rays, closest point.
+//! Medians of several runs; the scene and rays are fixed (seeded).
+//!
+//! Run: `cargo run -p bvhlab --release --example speed -- [MESH.obj] [runs]` (default: the
+//! shared ogre.obj beside the repository, 5 runs). `BVHLAB_SPEED_ONLY=build|coherent|incoherent|closest`
+//! runs one part only (for instruction counts: `none` only loads the mesh and builds the tree).
+#![expect(
+    clippy::print_stdout,
+    reason = "an example that prints its measurements"
+)]
+#![expect(
+    clippy::expect_used,
+    reason = "an example: a missing mesh ends it with a message"
+)]
+
+use std::hint::black_box;
+use std::time::Instant;
+
+use bvhlab::glam::Vec3;
+use bvhlab::prelude::*;
+use rand::{RngExt, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+fn main() {
+    let mut args = std::env::args().skip(1);
+    let path = args
+        .next()
+        .unwrap_or_else(|| "../shared/data/meshes/ogre.obj".into());
+    let runs: usize = args.next().and_then(|s| s.parse().ok()).unwrap_or(5);
+    let only = std::env::var("BVHLAB_SPEED_ONLY").unwrap_or_default();
+    let want = |part: &str| only.is_empty() || only == part;
+
+    let bytes = std::fs::read(&path).expect("the mesh file is readable");
+    let mesh = Mesh::from_obj(&bytes).expect("the mesh loads");
+    let tris = mesh.triangles();
+    println!("{path}: {} triangles", tris.len());
+
+    if want("build") {
+        let ms = median(runs, || {
+            let t = Instant::now();
+            black_box(AabbTree3::build(black_box(tris)));
+            t.elapsed().as_secs_f64() * 1e3
+        });
+        let tree = AabbTree3::build(tris);
+        let stats = tree.stats();
+        println!(
+            "build: {ms:.1} ms, SAH cost {:.2}, {} nodes",
+            stats.sah_cost.unwrap_or(f32::NAN),
+            stats.nodes
+        );
+    }
+    let tree = AabbTree3::build(tris);
+    let bounds = mesh.bounds();
+    let (coherent, incoherent) = (camera_rays(&bounds), random_rays(&bounds, 300_000));
+    for (name, rays) in [("coherent", &coherent), ("incoherent", &incoherent)] {
+        if !want(name) {
+            continue;
+        }
+        let mut hits = 0;
+        let secs = median(runs, || {
+            let t = Instant::now();
+            hits = rays
+                .iter()
+                .filter(|ray| tree.ray_first_hit(ray, f32::INFINITY).is_some())
+                .count();
+            t.elapsed().as_secs_f64()
+        });
+        println!(
+            "{name}: {:.2} Mrays/s ({} rays, {hits} hits)",
+            rays.len() as f64 / secs / 1e6,
+            rays.len()
+        );
+    }
+    if want("closest") {
+        let points = random_points(&bounds, 100_000);
+        let secs = median(runs, || {
+            let t = Instant::now();
+            let sum: f32 = points
+                .iter()
+                .filter_map(|&p| tree.closest_point(p))
+                .map(|n| n.distance)
+                .sum();
+            black_box(sum);
+            t.elapsed().as_secs_f64()
+        });
+        println!(
+            "closest point: {:.1} k queries/s",
+            points.len() as f64 / secs / 1e3
+        );
+    }
+}
+
+/// The median of `runs` measurements.
+fn median(runs: usize, mut measure: impl FnMut() -> f64) -> f64 {
+    let mut samples: Vec<f64> = (0..runs.max(1)).map(|_| measure()).collect();
+    samples.sort_by(f64::total_cmp);
+    samples[samples.len() / 2]
+}
+
+/// Primary rays of a 640x480 pinhole camera (60° vertical field of view) that frames the box,
+/// looking at its centre from the +z side, a little from above.
+fn camera_rays(bounds: &Aabb3) -> Vec<Ray3> {
+    let (w, h) = (640, 480);
+    let center = (bounds.min + bounds.max) * 0.5;
+    let extent = bounds.max - bounds.min;
+    // Far enough that the box's front fills the view's height (or width) with a margin.
+    let half_height = extent.y.max(extent.x * h as f32 / w as f32) * 0.55;
+    let distance = half_height / 30f32.to_radians().tan() + extent.z * 0.5;
+    let eye = center + Vec3::new(0.0, 0.2, 1.0).normalize() * distance;
+    let forward = (center - eye).normalize();
+    let right = forward.cross(Vec3::Y).normalize();
+    let up = right.cross(forward);
+    let half = 30f32.to_radians().tan();
+    let mut rays = Vec::with_capacity(w * h);
+    for y in 0..h {
+        for x in 0..w {
+            let u = ((x as f32 + 0.5) / w as f32 * 2.0 - 1.0) * half * w as f32 / h as f32;
+            let v = (1.0 - (y as f32 + 0.5) / h as f32 * 2.0) * half;
+            let ray = Ray3::new(eye, forward + right * u + up * v).expect("a finite ray");
+            rays.push(ray);
+        }
+    }
+    rays
+}
+
+/// Rays from uniform points in the box toward uniform directions (seeded).
+fn random_rays(bounds: &Aabb3, n: usize) -> Vec<Ray3> {
+    let mut rng = ChaCha8Rng::seed_from_u64(7);
+    (0..n)
+        .map(|_| {
+            let origin = point_in(bounds, &mut rng);
+            let dir = loop {
+                let d = Vec3::new(
+                    rng.random_range(-1.0..1.0),
+                    rng.random_range(-1.0..1.0),
+                    rng.random_range(-1.0..1.0),
+                );
+                if (0.01..=1.0).contains(&d.length_squared()) {
+                    break d;
+                }
+            };
+            Ray3::new(origin, dir).expect("a finite ray")
+        })
+        .collect()
+}
+
+/// Uniform points in the box (seeded).
+fn random_points(bounds: &Aabb3, n: usize) -> Vec<Vec3> {
+    let mut rng = ChaCha8Rng::seed_from_u64(11);
+    (0..n).map(|_| point_in(bounds, &mut rng)).collect()
+}
+
+fn point_in(bounds: &Aabb3, rng: &mut ChaCha8Rng) -> Vec3 {
+    let r = Vec3::new(
+        rng.random_range(0.0..1.0),
+        rng.random_range(0.0..1.0),
+        rng.random_range(0.0..1.0),
+    );
+    bounds.min + (bounds.max - bounds.min) * r
+}
