@@ -1,6 +1,8 @@
-//! The unobserved queries of the AABB tree take their own, faster walks: they must answer
-//! exactly what the observed walks (and brute force) answer, bit for bit, on random scenes at
-//! tiny and huge scales, on rays parallel to the axes, and on the real meshes.
+//! The unobserved ray first hit and closest point of the AABB tree take their own, faster
+//! walks: they must answer exactly what the observed walks (and brute force) answer, bit for
+//! bit, on random scenes at tiny and huge scales, on rays parallel to the axes, and on the
+//! real meshes. The unlogged build (which costs only the planes that can win) must make the
+//! logged build's tree.
 
 mod bvh_common;
 
@@ -35,6 +37,53 @@ fn check_rays(name: &str, tree: &AabbTree3, rays: &[Ray3], brute_rays: usize) ->
         }
     }
     hits
+}
+
+/// Compares the fast and observed closest points on `points` (and brute force on the first
+/// `brute_points` of them).
+fn check_points(name: &str, tree: &AabbTree3, points: &[Vec3], brute_points: usize) {
+    let brute = BruteForce::build(tree.primitives());
+    for (i, &point) in points.iter().enumerate() {
+        let fast = tree.closest_point(point);
+        let observed = tree.k_nearest_observed(point, 1, &mut ()).answer;
+        assert_eq!(
+            fast,
+            observed.first().copied(),
+            "{name}: point {i} {point:?}"
+        );
+        assert!(fast.is_some(), "{name}: no nearest to {point:?}");
+        if i < brute_points {
+            assert_eq!(
+                fast,
+                brute.closest_point(point),
+                "{name}: brute force, point {i} {point:?}"
+            );
+        }
+    }
+}
+
+/// Points in the scene's box grown by half its size, and the triangles' own vertices.
+fn box_points(rng: &mut ChaCha8Rng, tris: &[Triangle3], n: usize) -> Vec<Vec3> {
+    let bounds = tris
+        .iter()
+        .map(Primitive::bounds)
+        .reduce(|a, b| a.merge(&b))
+        .expect("a scene");
+    let size = bounds.max - bounds.min;
+    let mut points: Vec<Vec3> = (0..n)
+        .map(|_| {
+            bounds.min - size * 0.5
+                + size
+                    * 2.0
+                    * Vec3::new(
+                        rng.random::<f32>(),
+                        rng.random::<f32>(),
+                        rng.random::<f32>(),
+                    )
+        })
+        .collect();
+    points.extend(tris.iter().take(n / 4).map(|t| t.b));
+    points
 }
 
 /// Rays from random points of the scene's box toward random points of it, and the same
@@ -81,12 +130,16 @@ fn random_scenes_at_every_scale() {
             .collect();
         for method in [SplitMethod::BinnedSah, SplitMethod::SpatialMedian] {
             let name = format!("scale {scale}, {method:?}");
-            let tree = AabbTree3::with_options(&tris, &BvhOptions::with_method(method));
-            let (_, log) = AabbTree3::build_observed(&tris, &BvhOptions::default(), &mut ());
+            let options = BvhOptions::with_method(method);
+            let tree = AabbTree3::with_options(&tris, &options);
+            let (observed, log) = AabbTree3::build_observed(&tris, &options, &mut ());
+            assert_eq!(tree, observed, "{name}: the unlogged build differs");
             let mut rays = box_rays(&mut rng, &tris, 600);
             rays.extend(rays_for(&mut rng, &tris, &log, 600));
             let hits = check_rays(&name, &tree, &rays, 300);
             assert!(hits > rays.len() / 4, "{name}: only {hits} hits");
+            let points = box_points(&mut rng, &tris, 600);
+            check_points(&name, &tree, &points, 300);
         }
     }
 }
@@ -114,10 +167,13 @@ fn real_meshes() {
         let Some(tris) = mesh(name) else { continue };
         let mut rng = rng(seed);
         let tree = AabbTree3::build(&tris);
-        let (_, log) = AabbTree3::build_observed(&tris, &BvhOptions::default(), &mut ());
+        let (observed, log) = AabbTree3::build_observed(&tris, &BvhOptions::default(), &mut ());
+        assert_eq!(tree, observed, "{name}: the unlogged build differs");
         let mut rays = box_rays(&mut rng, &tris, 4000);
         rays.extend(rays_for(&mut rng, &tris, &log, 2000));
         let hits = check_rays(name, &tree, &rays, 100);
         assert!(hits > rays.len() / 2, "{name}: only {hits} hits");
+        let points = box_points(&mut rng, &tris, 3000);
+        check_points(name, &tree, &points, 100);
     }
 }

@@ -66,6 +66,15 @@ where
         .into_iter()
         .enumerate()
     {
+        // The unobserved closest point takes its own, faster walk.
+        assert_eq!(
+            bvh.closest_point(point),
+            bvh.k_nearest_observed(point, 1, &mut ())
+                .answer
+                .first()
+                .copied(),
+            "{name}: the fast closest point differs from the observed one, {point:?}"
+        );
         for k in [1, 3, 10] {
             let got = bvh.k_nearest(point, k);
             assert_eq!(

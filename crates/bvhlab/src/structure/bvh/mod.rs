@@ -80,6 +80,7 @@
 mod build;
 mod build_job;
 mod build_log;
+mod fast_nearest;
 mod fast_ray;
 mod fit_sliced;
 mod fit_sliced_obb;
@@ -181,6 +182,13 @@ where
     #[inline]
     fn ray_first_hit(&self, ray: &Ray<PointOf<Self>>, t_max: f32) -> Option<Hit> {
         self.first_hit_fast(ray, t_max)
+    }
+
+    /// The unobserved walk (`fast_nearest`): the observed one's answer, without its
+    /// bookkeeping.
+    #[inline]
+    fn closest_point(&self, point: PointOf<Self>) -> Option<Nearest<PointOf<Self>>> {
+        self.closest_point_fast(point)
     }
 
     fn ray_any_hit_observed<O: Observer<PointOf<Self>>>(

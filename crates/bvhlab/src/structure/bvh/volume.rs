@@ -63,6 +63,17 @@ pub trait NodeVolume: BoundingVolume + Copy + Send + Sync + 'static {
         self.distance(point)
     }
 
+    /// The square of [`distance_bound`](Self::distance_bound), for walks that compare
+    /// squares and save the square root. Rounding must be monotone with it: whenever
+    /// `distance_bound(point) <= r`, this is at most `r * r` (rounded) times
+    /// `1 + 4e-6`, plus four of the smallest subnormals. The default squares the bound;
+    /// the box computes the sum of squares whose root `distance_bound` takes.
+    #[inline]
+    fn distance_bound_squared(&self, point: Self::Point) -> f32 {
+        let d = self.distance_bound(point);
+        d * d
+    }
+
     /// Whether the volume may share a point with the range (conservative).
     fn overlaps_range(&self, range: &PreparedRange<Self::Point>) -> bool;
 
