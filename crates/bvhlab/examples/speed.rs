@@ -17,10 +17,12 @@
 use std::hint::black_box;
 use std::time::Instant;
 
-use bvhlab::glam::Vec3;
 use bvhlab::prelude::*;
-use rand::{RngExt, SeedableRng};
-use rand_chacha::ChaCha8Rng;
+
+#[path = "../benches/workload/mod.rs"]
+mod workload;
+
+use workload::{camera_rays, random_points, random_rays};
 
 fn main() {
     let mut args = std::env::args().skip(1);
@@ -101,66 +103,4 @@ fn median(runs: usize, mut measure: impl FnMut() -> f64) -> f64 {
     } else {
         samples[samples.len() / 2]
     }
-}
-
-/// Primary rays of a 640x480 pinhole camera (60° vertical field of view) that frames the box,
-/// looking at its centre from the +z side, a little from above.
-fn camera_rays(bounds: &Aabb3) -> Vec<Ray3> {
-    let (w, h) = (640, 480);
-    let center = (bounds.min + bounds.max) * 0.5;
-    let extent = bounds.max - bounds.min;
-    // Far enough that the box's front fills the view's height (or width) with a margin.
-    let half_height = extent.y.max(extent.x * h as f32 / w as f32) * 0.55;
-    let distance = half_height / 30f32.to_radians().tan() + extent.z * 0.5;
-    let eye = center + Vec3::new(0.0, 0.2, 1.0).normalize() * distance;
-    let forward = (center - eye).normalize();
-    let right = forward.cross(Vec3::Y).normalize();
-    let up = right.cross(forward);
-    let half = 30f32.to_radians().tan();
-    let mut rays = Vec::with_capacity(w * h);
-    for y in 0..h {
-        for x in 0..w {
-            let u = ((x as f32 + 0.5) / w as f32 * 2.0 - 1.0) * half * w as f32 / h as f32;
-            let v = (1.0 - (y as f32 + 0.5) / h as f32 * 2.0) * half;
-            let ray = Ray3::new(eye, forward + right * u + up * v).expect("a finite ray");
-            rays.push(ray);
-        }
-    }
-    rays
-}
-
-/// Rays from uniform points in the box toward uniform directions (seeded).
-fn random_rays(bounds: &Aabb3, n: usize) -> Vec<Ray3> {
-    let mut rng = ChaCha8Rng::seed_from_u64(7);
-    (0..n)
-        .map(|_| {
-            let origin = point_in(bounds, &mut rng);
-            let dir = loop {
-                let d = Vec3::new(
-                    rng.random_range(-1.0..1.0),
-                    rng.random_range(-1.0..1.0),
-                    rng.random_range(-1.0..1.0),
-                );
-                if (0.01..=1.0).contains(&d.length_squared()) {
-                    break d;
-                }
-            };
-            Ray3::new(origin, dir).expect("a finite ray")
-        })
-        .collect()
-}
-
-/// Uniform points in the box (seeded).
-fn random_points(bounds: &Aabb3, n: usize) -> Vec<Vec3> {
-    let mut rng = ChaCha8Rng::seed_from_u64(11);
-    (0..n).map(|_| point_in(bounds, &mut rng)).collect()
-}
-
-fn point_in(bounds: &Aabb3, rng: &mut ChaCha8Rng) -> Vec3 {
-    let r = Vec3::new(
-        rng.random_range(0.0..1.0),
-        rng.random_range(0.0..1.0),
-        rng.random_range(0.0..1.0),
-    );
-    bounds.min + (bounds.max - bounds.min) * r
 }
