@@ -12,7 +12,8 @@ use crate::primitive::triangle::RayShear;
 /// non-finite coordinates and a zero direction, so every query can trust its ray.
 ///
 /// Construction also precomputes what the watertight triangle test needs of the direction
-/// (its [`RayShear`]), so that a 3D query does that once per ray, not once per triangle.
+/// (the permutation and shear of Woop, Benthin and Wald), so that a 3D query does that once
+/// per ray, not once per triangle.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Ray<V: Vector> {
     origin: V,

@@ -74,8 +74,16 @@
 //! `split_median` and `split_sah` (construction, whose decisions [`SplitRecord`] keeps),
 //! [`volume`] with `node_aabb`, `node_sphere` and `node_obb` (what a node volume answers,
 //! conservatively), `traverse_ray`, `traverse_nearest`, `traverse_range` and
-//! `traverse_collide` (queries), `lecture` (the slides' recursions), `stats` and `validate`,
-//! and `tests`.
+//! `traverse_collide` (queries), `fast_ray` and `fast_nearest` (the unobserved first hit and
+//! closest point), `lecture` (the slides' recursions), `stats` and `validate`, and `tests`.
+//!
+//! The plain [`ray_first_hit`](SpatialIndex::ray_first_hit) and
+//! [`closest_point`](SpatialIndex::closest_point), which nobody watches, take walks of their
+//! own that skip what only the lab needs (depths, counters, the order of reports): the
+//! nearer child is visited next without touching the stack, and only the farther waits.
+//! They answer exactly what the observed walks answer, bit for bit (the same node and
+//! primitive tests, and pruning that never skips a node the observed walk visits); the lab
+//! steps through the observed ones.
 
 mod build;
 mod build_job;
