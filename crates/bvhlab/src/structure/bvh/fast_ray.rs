@@ -9,7 +9,8 @@
 //! (node index and entry `t`, 8 bytes), and nothing is counted.
 //!
 //! The answer is the observed walk's, bit for bit: both use the same node test
-//! ([`NodeVolume::ray_entry`]), the same primitive test and the same pruning rule (a node
+//! ([`NodeVolume::ray_entry`], or [`NodeVolume::ray_enter`], which gives the same entry `t`
+//! with wider instructions), the same primitive test and the same pruning rule (a node
 //! is skipped only when the ray enters it beyond the best hit times [`GROW`]), and the best
 //! hit is the least `(t, index)` over every primitive not pruned, whatever the order they
 //! are met in ([`HitTracker`]).
@@ -40,8 +41,7 @@ where
         let enters = |node: u32, limit: f32| {
             self.nodes[node as usize]
                 .volume
-                .ray_entry(&prepared)
-                .map(|(t_enter, _)| t_enter)
+                .ray_enter(&prepared)
                 .filter(|&t_enter| t_enter <= limit * GROW)
         };
         enters(0, limit)?;
