@@ -2,6 +2,7 @@
 
 use crate::Vector;
 use crate::error::{GeometryError, check_finite};
+use crate::primitive::triangle::RayShear;
 
 /// A ray `p(t) = origin + t · dir` for `t >= 0`, in 2D ([`Ray2`](crate::Ray2)) or 3D
 /// ([`Ray3`](crate::Ray3)).
@@ -9,11 +10,16 @@ use crate::error::{GeometryError, check_finite};
 /// The direction need not have unit length: `t` is measured in units of `dir`, exactly as in
 /// the lecture's `p(t) = e + t (s - e)`, where `t = 1` is the point `s`. Construction rejects
 /// non-finite coordinates and a zero direction, so every query can trust its ray.
+///
+/// Construction also precomputes what the watertight triangle test needs of the direction
+/// (the permutation and shear of Woop, Benthin and Wald), so that a 3D query does that once
+/// per ray, not once per triangle.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Ray<V: Vector> {
     origin: V,
     dir: V,
     inv_dir: V,
+    shear: RayShear,
 }
 
 impl<V: Vector> Ray<V> {
@@ -33,10 +39,16 @@ impl<V: Vector> Ray<V> {
         for i in 0..V::DIM {
             inv_dir.set_coord(i, 1.0 / dir.coord(i));
         }
+        let shear = if V::DIM == 3 {
+            RayShear::of(dir.to_dvec3().as_vec3())
+        } else {
+            RayShear::default()
+        };
         Ok(Self {
             origin,
             dir,
             inv_dir,
+            shear,
         })
     }
 
@@ -62,6 +74,12 @@ impl<V: Vector> Ray<V> {
     /// Component-wise `1 / d`, with `±inf` where a component of `d` is `±0`.
     pub fn inv_dir(&self) -> V {
         self.inv_dir
+    }
+
+    /// The watertight triangle test's setup for this direction (3D; unused in 2D).
+    #[inline]
+    pub(crate) fn shear(&self) -> &RayShear {
+        &self.shear
     }
 
     /// The point `e + t d`.

@@ -30,6 +30,44 @@ struct Sheared {
     z: f32,
 }
 
+/// What the watertight test computes from the ray's direction alone (Woop, Benthin and
+/// Wald 2013, §3): the axes that become x, y and z, and the shear that turns the direction
+/// into +z. [`Ray`](crate::Ray) computes it once, when it is made.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct RayShear {
+    /// The direction's dominant axis (the one that becomes z), and the two others, in the
+    /// order that keeps the winding.
+    kx: u8,
+    ky: u8,
+    kz: u8,
+    /// `d[kx] / d[kz]`, `d[ky] / d[kz]`, `1 / d[kz]`.
+    sx: f32,
+    sy: f32,
+    sz: f32,
+}
+
+impl RayShear {
+    /// The setup for direction `d`.
+    pub(crate) fn of(d: Vec3) -> Self {
+        // kz: the dominant axis of the direction; kx, ky follow it cyclically, swapped when
+        // d[kz] < 0 to keep the winding (and so the sign convention) unchanged.
+        let kz = d.abs().max_position();
+        let mut kx = (kz + 1) % 3;
+        let mut ky = (kx + 1) % 3;
+        if d[kz] < 0.0 {
+            std::mem::swap(&mut kx, &mut ky);
+        }
+        Self {
+            kx: kx as u8,
+            ky: ky as u8,
+            kz: kz as u8,
+            sx: d[kx] / d[kz],
+            sy: d[ky] / d[kz],
+            sz: 1.0 / d[kz],
+        }
+    }
+}
+
 impl Triangle3 {
     /// The triangle with corners `a`, `b`, `c`.
     pub const fn new(a: Vec3, b: Vec3, c: Vec3) -> Self {
@@ -47,18 +85,16 @@ impl Triangle3 {
     /// `f64` (the paper's fallback for exact zeros, made the rule), which also keeps them exact
     /// in sign at any `f32` scale. Both sides are hit; a ray in the triangle's plane is not.
     pub fn ray_hit(&self, ray: &Ray3) -> Option<f32> {
-        let d = ray.dir();
-        // kz: the dominant axis of the direction; kx, ky follow it cyclically, swapped when
-        // d[kz] < 0 to keep the winding (and so the sign convention) unchanged.
-        let kz = d.abs().max_position();
-        let mut kx = (kz + 1) % 3;
-        let mut ky = (kx + 1) % 3;
-        if d[kz] < 0.0 {
-            std::mem::swap(&mut kx, &mut ky);
-        }
-        let sx = d[kx] / d[kz];
-        let sy = d[ky] / d[kz];
-        let sz = 1.0 / d[kz];
+        // The permutation and shear of the ray's direction ([`RayShear`], made with the ray).
+        let &RayShear {
+            kx,
+            ky,
+            kz,
+            sx,
+            sy,
+            sz,
+        } = ray.shear();
+        let (kx, ky, kz) = (usize::from(kx), usize::from(ky), usize::from(kz));
         let shear = |p: Vec3| {
             let p = p - ray.origin();
             Sheared {

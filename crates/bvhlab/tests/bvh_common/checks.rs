@@ -66,6 +66,15 @@ where
         .into_iter()
         .enumerate()
     {
+        // The unobserved closest point takes its own, faster walk.
+        assert_eq!(
+            bvh.closest_point(point),
+            bvh.k_nearest_observed(point, 1, &mut ())
+                .answer
+                .first()
+                .copied(),
+            "{name}: the fast closest point differs from the observed one, {point:?}"
+        );
         for k in [1, 3, 10] {
             let got = bvh.k_nearest(point, k);
             assert_eq!(
@@ -146,6 +155,13 @@ where
     }
     let want = brute.ray_first_hit(ray, t_max);
     let got = bvh.ray_first_hit(ray, t_max);
+    // The unobserved query takes its own, faster walk: it must give the observed answer bit
+    // for bit.
+    assert_eq!(
+        got,
+        bvh.ray_first_hit_observed(ray, t_max, &mut ()).answer,
+        "{name}: the fast first hit differs from the observed one, {ray:?}, t_max {t_max}"
+    );
     if got != want && want.as_ref().is_none_or(plausible) {
         let tie = match (got, want) {
             (Some(g), Some(w)) => {

@@ -74,12 +74,22 @@
 //! `split_median` and `split_sah` (construction, whose decisions [`SplitRecord`] keeps),
 //! [`volume`] with `node_aabb`, `node_sphere` and `node_obb` (what a node volume answers,
 //! conservatively), `traverse_ray`, `traverse_nearest`, `traverse_range` and
-//! `traverse_collide` (queries), `lecture` (the slides' recursions), `stats` and `validate`,
-//! and `tests`.
+//! `traverse_collide` (queries), `fast_ray` and `fast_nearest` (the unobserved first hit and
+//! closest point), `lecture` (the slides' recursions), `stats` and `validate`, and `tests`.
+//!
+//! The plain [`ray_first_hit`](SpatialIndex::ray_first_hit) and
+//! [`closest_point`](SpatialIndex::closest_point), which nobody watches, take walks of their
+//! own that skip what only the lab needs (depths, counters, the order of reports): the
+//! nearer child is visited next without touching the stack, and only the farther waits.
+//! They answer exactly what the observed walks answer, bit for bit (the same node and
+//! primitive tests, and pruning that never skips a node the observed walk visits); the lab
+//! steps through the observed ones.
 
 mod build;
 mod build_job;
 mod build_log;
+mod fast_nearest;
+mod fast_ray;
 mod fit_sliced;
 mod fit_sliced_obb;
 mod fit_sliced_sphere;
@@ -174,6 +184,19 @@ where
         observer: &mut O,
     ) -> Traced<Option<Hit>> {
         self.first_hit(ray, t_max, observer)
+    }
+
+    /// The unobserved walk (`fast_ray`): the observed one's answer, without its bookkeeping.
+    #[inline]
+    fn ray_first_hit(&self, ray: &Ray<PointOf<Self>>, t_max: f32) -> Option<Hit> {
+        self.first_hit_fast(ray, t_max)
+    }
+
+    /// The unobserved walk (`fast_nearest`): the observed one's answer, without its
+    /// bookkeeping.
+    #[inline]
+    fn closest_point(&self, point: PointOf<Self>) -> Option<Nearest<PointOf<Self>>> {
+        self.closest_point_fast(point)
     }
 
     fn ray_any_hit_observed<O: Observer<PointOf<Self>>>(

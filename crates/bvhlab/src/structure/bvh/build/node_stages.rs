@@ -215,7 +215,13 @@ where
                 next: end,
             };
         }
-        let Some(curve) = binning.finish(&mut self.sah) else {
+        // Only a logged build keeps every plane's cost.
+        let curve = if self.log.is_some() {
+            binning.finish(&mut self.sah)
+        } else {
+            binning.finish_best(&mut self.sah)
+        };
+        let Some(curve) = curve else {
             return self.no_sah_curve(node, record, observer);
         };
         if self.log.is_some() {

@@ -1,0 +1,69 @@
+//! Criterion medians of issue 7's workload on the AABB tree over ogre.obj (124k triangles):
+//! the binned SAH build, ray first hit on coherent and incoherent rays, closest point, each
+//! unobserved (the fast walks) and, for rays, observed with the no-op observer (the walk the
+//! lab steps through). Skipped, with a message, when the shared meshes are absent.
+//!
+//! Run: `cargo bench -p bvhlab --bench speed`.
+
+#[path = "workload/mod.rs"]
+mod workload;
+
+use std::hint::black_box;
+
+use bvhlab::prelude::*;
+use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use workload::{camera_rays, random_points, random_rays, shared_mesh};
+
+fn speed(c: &mut Criterion) {
+    let Some(mesh) = shared_mesh("ogre.obj") else {
+        return;
+    };
+    let tris = mesh.triangles();
+    let mut group = c.benchmark_group("ogre");
+    group.sample_size(10);
+    group.throughput(Throughput::Elements(tris.len() as u64));
+    group.bench_function("build binned SAH", |b| {
+        b.iter(|| AabbTree3::build(black_box(tris)));
+    });
+    let tree = AabbTree3::build(tris);
+    let bounds = mesh.bounds();
+    for (name, rays) in [
+        ("coherent", camera_rays(&bounds)),
+        ("incoherent", random_rays(&bounds, 300_000)),
+    ] {
+        group.throughput(Throughput::Elements(rays.len() as u64));
+        group.bench_function(format!("ray first hit, {name}"), |b| {
+            b.iter(|| {
+                rays.iter()
+                    .filter(|ray| tree.ray_first_hit(black_box(ray), f32::INFINITY).is_some())
+                    .count()
+            });
+        });
+        group.bench_function(format!("ray first hit observed, {name}"), |b| {
+            b.iter(|| {
+                rays.iter()
+                    .filter(|ray| {
+                        tree.ray_first_hit_observed(black_box(ray), f32::INFINITY, &mut ())
+                            .answer
+                            .is_some()
+                    })
+                    .count()
+            });
+        });
+    }
+    let points = random_points(&bounds, 100_000);
+    group.throughput(Throughput::Elements(points.len() as u64));
+    group.bench_function("closest point", |b| {
+        b.iter(|| {
+            points
+                .iter()
+                .filter_map(|&p| tree.closest_point(black_box(p)))
+                .map(|n| n.distance)
+                .sum::<f32>()
+        });
+    });
+    group.finish();
+}
+
+criterion_group!(benches, speed);
+criterion_main!(benches);
