@@ -14,7 +14,9 @@
 //!   [`lane`]: one structure and what is derived from it (two when comparing).
 //! - [`export`], [`export_ui`]: SVG and PNG for slides.
 //! - [`report`]: the lab's state for the page (the browser test and screen readers read it).
-//! - [`persist`]: scene files, share links and the state kept across reloads.
+//! - [`persist`]: scene files, share links and the state kept across reloads; `native`: the
+//!   native window's saved state and caught panics; [`embed`]: address parameters and the
+//!   scripting API for course pages.
 
 pub mod app;
 pub mod build_view;
@@ -25,6 +27,8 @@ pub mod export_ui;
 pub mod frame_clock;
 pub mod lab3d;
 pub mod lane;
+#[cfg(not(target_arch = "wasm32"))]
+pub mod native;
 pub mod paint;
 pub mod panels;
 pub mod persist;

@@ -11,7 +11,11 @@ fn main() -> eframe::Result {
     eframe::run_native(
         "bvh-lab",
         options,
-        Box::new(|_cc| Ok(Box::new(bvhlab_app::LabApp::default()))),
+        Box::new(|_cc| {
+            Ok(Box::new(bvhlab_app::native::NativeLab::open(
+                bvhlab_app::native::NativeLab::state_path(),
+            )))
+        }),
     )
 }
 
