@@ -21,6 +21,11 @@ step "tests (native)"
 BVHLAB_REQUIRE_GPU=1 cargo test --workspace --lib --bins --tests
 cargo test --workspace --doc
 
+step "fuzzing (libFuzzer on stable Rust: mesh files, scene files, share links; 20 s each)"
+# Builds fuzz/ instrumented (cargo and the C++ compiler only; about 10 minutes cold on 2
+# cores, seconds after), runs each target over its committed corpus; a crash fails.
+bash tests/fuzz.sh 20
+
 step "benchmarks compile (run them with cargo bench; timings are not tests)"
 # The lab's frame bench is left out: building it means a release build of eframe and wgpu
 # (about 6 minutes on 2 cores); clippy --all-targets below still type-checks it.

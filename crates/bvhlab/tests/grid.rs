@@ -372,3 +372,88 @@ fn real_meshes() {
         check_queries(name, &grid, other, &rays, &points, &mut rng);
     }
 }
+
+/// Regression (found by `tests/extreme_values.rs`): a ray from a million units away, aimed
+/// exactly at a point on the grid's far corner, missed it. The rounding tolerance (relative
+/// to the origin's magnitude) was wider than a cell, so the crossing of the last row "tied"
+/// with the column crossings several cells earlier, and stepping both at once left the grid
+/// before the cells between were visited.
+#[test]
+fn a_ray_from_far_away_visits_every_cell_to_the_far_corner() {
+    let points = [Vec2::new(-1.0, 2.0), Vec2::new(-3.0, -2.0)];
+    let ray = Ray::new(Vec2::new(-1e6, 0.0), Vec2::new(999_999.0, 2.0)).expect("ray");
+    let brute = bvhlab::BruteForce::build(&points);
+    let want = brute.ray_first_hit(&ray, f32::INFINITY);
+    assert_eq!(want.map(|h| h.prim), Some(0), "the ray is aimed at point 0");
+    for n in [2, 7, 30] {
+        let grid = Grid::with_options(
+            &points,
+            GridOptions {
+                resolution: Some([n, n, 1]),
+                ..GridOptions::default()
+            },
+        );
+        assert_eq!(
+            grid.ray_first_hit(&ray, f32::INFINITY),
+            want,
+            "{n} x {n} cells"
+        );
+        assert_eq!(
+            grid.ray_all_hits(&ray, f32::INFINITY),
+            brute.ray_all_hits(&ray, f32::INFINITY)
+        );
+        assert!(
+            grid.ray_any_hit(&ray, f32::INFINITY).is_some(),
+            "{n} x {n} cells"
+        );
+    }
+}
+
+/// Regression (found by `tests/extreme_values.rs`): a flat grid (two points on `y = 3`) and
+/// a ray along it whose `y` direction is tiny (-8e-27) but not zero. In exact arithmetic the
+/// ray leaves the grid's single row at once, so the walk stopped there; but `ray.at(t)`
+/// rounds back onto `y = 3` all the way, and brute force hits both points.
+#[test]
+fn a_ray_with_a_tiny_component_along_a_flat_grid_walks_all_of_it() {
+    let points = [Vec2::new(-1.0, 3.0), Vec2::new(0.0, 3.0)];
+    let ray = Ray::new(Vec2::new(0.0, 3.0), Vec2::new(-8.5e13, -8e-27)).expect("ray");
+    let brute = bvhlab::BruteForce::build(&points);
+    let want = brute.ray_all_hits(&ray, f32::INFINITY);
+    assert_eq!(want.len(), 2, "brute force hits both points: {want:?}");
+    for resolution in [None, Some([6, 1, 1]), Some([6, 3, 1])] {
+        let grid = Grid::with_options(
+            &points,
+            GridOptions {
+                resolution,
+                ..GridOptions::default()
+            },
+        );
+        assert_eq!(
+            grid.ray_all_hits(&ray, f32::INFINITY),
+            want,
+            "{resolution:?}"
+        );
+    }
+}
+
+/// Regression (found by `tests/extreme_values.rs`): a segment from 6.5e5 down to 2.4e-12 and a
+/// ball of radius 1e-13 around the origin. The segment's `f32` distance, only as exact as its
+/// 6.5e5 coordinates, puts it inside the ball, so brute force reports it; the grid grew the
+/// ball only by the rounding of the ball's own (zero) coordinates, found no cell, and
+/// reported nothing. The grid and the 2^D tree now grow it by their scene's magnitude too.
+#[test]
+fn a_ball_range_allows_for_the_rounding_of_huge_primitives() {
+    let segments = [Segment2::new(
+        Vec2::new(645_727.56, -7.153_794_6e-22),
+        Vec2::new(2.351_865_2e-12, -6.857_922e-26),
+    )];
+    let ball = bvhlab::RangeShape::Ball(bvhlab::Sphere::new(Vec2::ZERO, 1e-13));
+    let want = bvhlab::BruteForce::build(&segments).range(&ball);
+    assert_eq!(want, [0], "brute force, within the segment's rounding");
+    assert_eq!(Grid::build(&segments).range(&ball), want, "grid");
+    assert_eq!(
+        bvhlab::Quadtree2::build(&segments).range(&ball),
+        want,
+        "quadtree"
+    );
+}

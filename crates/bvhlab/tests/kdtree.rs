@@ -332,3 +332,39 @@ proptest! {
         let _ = tree.k_nearest(o.truncate(), 3);
     }
 }
+
+/// Regression (found by `tests/extreme_values.rs`): segment 1 runs from (-5.8e14, 65.5) to
+/// (0, 9e-6), and its `f32` ray test reports a hit at `t = 0` for a ray starting at (1e-7, 0),
+/// just past its end: its hits are only as exact as its 5.8e14 coordinates. The SAH tree's
+/// plane crossings allowed only for the rounding of the plane and the ray origin (both tiny
+/// there), so the tree skipped the cell where that hit lies and answered segment 0 instead.
+#[test]
+fn a_hit_as_inexact_as_a_huge_primitive_is_found_across_a_plane() {
+    let segments = [
+        Segment2::new(
+            Vec2::new(2.282_646_2e-7, 0.0),
+            Vec2::new(-579_430_300_000_000.0, 65.524_72),
+        ),
+        Segment2::new(
+            Vec2::new(-579_430_300_000_000.0, 65.524_72),
+            Vec2::new(0.0, 8.970_413e-6),
+        ),
+    ];
+    let ray = Ray::new(Vec2::new(1e-7, 0.0), Vec2::new(-1e-7, 1e-6)).expect("ray");
+    let brute = bvhlab::BruteForce::build(&segments);
+    let want = brute.ray_first_hit(&ray, f32::INFINITY);
+    assert_eq!(want.map(|h| h.prim), Some(1), "{want:?}");
+    for options in [
+        KdTreeOptions::sah(),
+        KdTreeOptions::median(AxisRule::RoundRobin),
+        KdTreeOptions::median(AxisRule::LongestAxis),
+    ] {
+        let tree = KdTree::with_options(&segments, &options);
+        assert_eq!(tree.ray_first_hit(&ray, f32::INFINITY), want, "{options:?}");
+        assert_eq!(
+            tree.ray_all_hits(&ray, f32::INFINITY),
+            brute.ray_all_hits(&ray, f32::INFINITY),
+            "{options:?}"
+        );
+    }
+}

@@ -14,12 +14,21 @@
 //!   then the walk steps all of them at once.
 //! - **Along boundaries.** A ray with a zero direction component that runs on (or within the
 //!   tolerance of) a cell boundary plane lies in the cells on both sides; both are visited,
-//!   for the whole walk.
+//!   for the whole walk. A component so small that the ray moves less than the tolerance
+//!   along that axis while it crosses the grid counts as zero: such a ray may leave a flat
+//!   grid's single layer at once, in exact arithmetic, and still hit what lies in it (hits
+//!   are only as exact as `f32` coordinates).
 //! - **At the entry.** The entry point is computed, so it may round into the next cell across
 //!   a boundary it actually reaches a moment later; when it lies within the tolerance of the
 //!   boundary behind it, the walk starts one cell further back.
 //! - **Outside the grid.** The ray is first clipped to the grid's box, grown by the
 //!   tolerance, and the entry cell is clamped to the grid.
+//! - **A tolerance as wide as a cell.** All of the above looks one cell to each side, which
+//!   is enough while the tolerance is narrower than a cell. It is not for a ray from very far
+//!   away (the tolerance grows with the origin's magnitude: from 1e6 cell widths away it is a
+//!   cell wide), where a "tie" can span several cells and stepping the tied axes at once
+//!   skipped the cells between. Such a ray visits every cell its tolerance band touches,
+//!   sorted by where it enters them (`Grid::walk_wide`).
 
 use std::ops::ControlFlow;
 
@@ -69,12 +78,16 @@ impl<P: Primitive> Grid<P> {
         if self.cell_count() == 0 {
             return;
         }
-        let Some((t_start, _)) = ray_box_interval(ray, &self.bounds, tol.len) else {
+        let Some((t_start, t_end)) = ray_box_interval(ray, &self.bounds, tol.len) else {
             return;
         };
+        if self.tolerance_spans_a_cell(tol) {
+            self.walk_wide(ray, tol, visit);
+            return;
+        }
         let mut axes = [Axis::default(); 3];
         for (i, axis) in axes.iter_mut().enumerate().take(dim) {
-            *axis = self.start_axis(ray, i, t_start, tol);
+            *axis = self.start_axis(ray, i, (t_start, t_end), tol);
         }
         let axes_beside = axes.iter().any(|a| a.beside_len > 0);
         let mut t_enter = t_start;
@@ -130,8 +143,58 @@ impl<P: Primitive> Grid<P> {
         }
     }
 
-    /// The walk's state along axis `i` at the entry `t_start`.
-    fn start_axis(&self, ray: &Ray<P::Point>, i: usize, t_start: f64, tol: &RayTolerance) -> Axis {
+    /// Whether the rounding tolerance is half a cell wide or more along an axis with several
+    /// cells: then the one-cell look-around of the walk is not enough.
+    fn tolerance_spans_a_cell(&self, tol: &RayTolerance) -> bool {
+        (0..P::Point::DIM).any(|i| {
+            let n = self.dims[i] as usize;
+            n > 1 && (0..n).any(|k| self.plane(i, k + 1) - self.plane(i, k) <= 2.0 * tol.len)
+        })
+    }
+
+    /// Every cell whose box, grown by the tolerance, the ray passes through, in the order the
+    /// ray enters them (ties by index): the walk for a tolerance as wide as a cell. It tests
+    /// every cell, so it is kept for those rays alone.
+    fn walk_wide(
+        &self,
+        ray: &Ray<P::Point>,
+        tol: &RayTolerance,
+        mut visit: impl FnMut(CellVisit) -> ControlFlow<()>,
+    ) {
+        let mut cells = Vec::new();
+        for z in 0..self.dims[2] {
+            for y in 0..self.dims[1] {
+                for x in 0..self.dims[0] {
+                    let coords = [x, y, z];
+                    let cell_box = self.cell_box(coords);
+                    if let Some((t_enter, t_exit)) = ray_box_interval(ray, &cell_box, tol.len) {
+                        cells.push(CellVisit {
+                            cell: self.cell_index(coords) as u32,
+                            coords,
+                            t_enter,
+                            t_exit,
+                        });
+                    }
+                }
+            }
+        }
+        cells.sort_by(|a, b| a.t_enter.total_cmp(&b.t_enter).then(a.cell.cmp(&b.cell)));
+        for cell in cells {
+            if visit(cell).is_break() {
+                return;
+            }
+        }
+    }
+
+    /// The walk's state along axis `i`, for the ray inside the grown grid box over
+    /// `[t_start, t_end]`.
+    fn start_axis(
+        &self,
+        ray: &Ray<P::Point>,
+        i: usize,
+        (t_start, t_end): (f64, f64),
+        tol: &RayTolerance,
+    ) -> Axis {
         let (o, d) = (
             f64::from(ray.origin().coord(i)),
             f64::from(ray.dir().coord(i)),
@@ -139,12 +202,14 @@ impl<P: Primitive> Grid<P> {
         let n = i64::from(self.dims[i]);
         let p = o + t_start * d;
         let mut cell = i64::from(self.locate(i, p));
-        let step = if d > 0.0 {
-            1
-        } else if d < 0.0 {
-            -1
-        } else {
+        // How far the ray moves along this axis inside the grid (NaN for `0 · inf`: parallel).
+        let drift = d.abs() * (t_end - t_start);
+        let step = if d == 0.0 || drift.is_nan() || drift <= tol.len {
             0
+        } else if d > 0.0 {
+            1
+        } else {
+            -1
         };
         // Start one cell back when the entry point may have rounded across the boundary
         // behind it.
@@ -162,12 +227,14 @@ impl<P: Primitive> Grid<P> {
             beside_len: 0,
         };
         if step == 0 {
+            // The ray stays within `drift` of `p` along this axis.
             let k = cell as usize;
-            if cell > 0 && (o - self.plane(i, k)).abs() <= tol.len {
+            let reach = tol.len + if drift.is_nan() { 0.0 } else { drift };
+            if cell > 0 && (p - self.plane(i, k)).abs() <= reach {
                 axis.beside[axis.beside_len] = -1;
                 axis.beside_len += 1;
             }
-            if cell < n - 1 && (self.plane(i, k + 1) - o).abs() <= tol.len {
+            if cell < n - 1 && (self.plane(i, k + 1) - p).abs() <= reach {
                 axis.beside[axis.beside_len] = 1;
                 axis.beside_len += 1;
             }

@@ -4,7 +4,7 @@
 
 use super::layout::{Grid, cells_in};
 use super::probe::{PairCollector, prim_id, test_range};
-use super::tolerance::{is_prunable_range, range_box, range_may_touch};
+use super::tolerance::{box_max_abs, is_prunable_range, range_box, range_may_touch};
 use crate::structure::{
     Event, Mailbox, NodeId, Observer, PruneReason, QueryCost, RangeShape, Traced,
 };
@@ -42,13 +42,13 @@ impl<P: Primitive> Grid<P> {
             );
         }
         let mut mailbox = Mailbox::new();
-        if let Some(range) = self.cell_range(&range_box(shape)) {
+        if let Some(range) = self.cell_range(&range_box(shape, box_max_abs(&self.bounds))) {
             for coords in cells_in(range) {
                 let cell = self.cell_index(coords);
                 let node = NodeId(cell as u32);
                 if matches!(shape, RangeShape::Ball(_)) {
                     cost.bound_tests += 1;
-                    if !range_may_touch(shape, &self.cell_box(coords)) {
+                    if !range_may_touch(shape, &self.cell_box(coords), box_max_abs(&self.bounds)) {
                         observer.on(Event::Prune {
                             node,
                             reason: PruneReason::NoOverlap,

@@ -137,13 +137,14 @@ pub(crate) fn is_prunable_range<V: Vector>(shape: &RangeShape<V>) -> bool {
 }
 
 /// The box whose cells a range query visits: the region's box, grown for a ball by the same
-/// tolerance as [`range_may_touch`] (the ball's `f32` box may round inward).
-pub(crate) fn range_box<V: Vector>(shape: &RangeShape<V>) -> Aabb<V> {
+/// tolerance as [`range_may_touch`] (the ball's `f32` box may round inward). `scene` is the
+/// structure's largest coordinate ([`box_max_abs`] of its bounds).
+pub(crate) fn range_box<V: Vector>(shape: &RangeShape<V>, scene: f64) -> Aabb<V> {
     match shape {
         RangeShape::Box(b) => *b,
         RangeShape::Ball(s) => {
             let r = f64::from(s.radius);
-            let grow = r + 1e-5 * r + 1e-6 * max_abs(s.center) + 1e-22;
+            let grow = r + 1e-5 * r + 1e-6 * max_abs(s.center).max(scene) + 1e-22;
             let (mut lo, mut hi) = (s.center, s.center);
             for i in 0..V::DIM {
                 let c = f64::from(s.center.coord(i));
@@ -156,12 +157,19 @@ pub(crate) fn range_box<V: Vector>(shape: &RangeShape<V>) -> Aabb<V> {
 }
 
 /// Whether a cell may hold a primitive that overlaps the region: exact for a box (closed
-/// boxes that share a point), generous by the rounding tolerance for a ball.
-pub(crate) fn range_may_touch<V: Vector>(shape: &RangeShape<V>, cell: &Aabb<V>) -> bool {
+/// boxes that share a point), generous by the rounding tolerance for a ball. The tolerance
+/// counts the structure's largest coordinate `scene` too: a primitive's distance is only as
+/// exact as its own coordinates, and a primitive reaching from a cell of tiny coordinates to
+/// 1e6 may round into a ball that its cell lies outside of.
+pub(crate) fn range_may_touch<V: Vector>(
+    shape: &RangeShape<V>,
+    cell: &Aabb<V>,
+    scene: f64,
+) -> bool {
     match shape {
         RangeShape::Box(b) => b.overlaps(cell),
         RangeShape::Ball(s) => {
-            let scale = max_abs(s.center).max(box_max_abs(cell));
+            let scale = max_abs(s.center).max(box_max_abs(cell)).max(scene);
             may_be_nearer(box_distance(cell, s.center), s.radius, scale)
         }
     }

@@ -26,7 +26,7 @@ pub use layout::{KdNode, KdNodeView};
 pub use options::{AxisRule, KdBuilder, KdTreeOptions, SahCosts};
 
 use self::build::{Builder, split_cell};
-use super::bsp::plane_tree::{Crossing, PlaneNode, PlaneTree, axis_crossing};
+use super::bsp::plane_tree::{Crossing, PlaneNode, PlaneTree, SLACK, axis_crossing, magnitude};
 use super::bsp::{
     plane_tree_check, traverse_collide, traverse_nearest, traverse_range, traverse_ray,
 };
@@ -182,21 +182,28 @@ impl<P: Primitive> PlaneTree for KdTree<P> {
     }
 
     /// The axis-aligned fast path: `t = (split - o_axis) / d_axis` with the ray's `1/d`.
+    ///
+    /// Besides the crossing's own rounding, the margin allows for the primitives': a
+    /// primitive's hit is only as exact as its coordinates, so a primitive with large
+    /// coordinates may report a hit a few units in the last place of the scene's
+    /// magnitude across a plane whose neighbourhood has tiny ones (a segment from 1e-7 to
+    /// 6e14, a ray near the origin).
     #[inline]
     fn crossing(&self, node: u32, ray: &Ray<P::Point>) -> Crossing {
         let n = &self.nodes[node as usize];
         let (axis, split) = (n.axis(), n.split());
         let (o, d) = (ray.origin().coord(axis), ray.dir().coord(axis));
+        let scene = SLACK * magnitude(self.root_cell.min).max(magnitude(self.root_cell.max));
         if d == 0.0 {
             return Crossing::Parallel {
-                below: o <= split,
-                above: o >= split,
+                below: o <= split + scene,
+                above: o >= split - scene,
             };
         }
         let (t, err) = axis_crossing(split, o, d, ray.inv_dir().coord(axis));
         Crossing::At {
             t,
-            err,
+            err: err + scene / d.abs(),
             below_first: d > 0.0,
         }
     }

@@ -3,7 +3,7 @@
 
 use super::layout::{Orthtree, child_box_at, child_count, split_point};
 use crate::structure::grid::probe::{PairCollector, prim_id, test_range};
-use crate::structure::grid::tolerance::{is_prunable_range, range_may_touch};
+use crate::structure::grid::tolerance::{box_max_abs, is_prunable_range, range_may_touch};
 use crate::structure::{
     Event, Mailbox, NodeId, Observer, PruneReason, QueryCost, RangeShape, Traced,
 };
@@ -46,7 +46,7 @@ impl<P: Primitive> Orthtree<P> {
         while let Some((node, bounds, depth)) = stack.pop() {
             let id = NodeId(node);
             cost.bound_tests += 1;
-            if !range_may_touch(shape, &bounds) {
+            if !range_may_touch(shape, &bounds, box_max_abs(&self.root)) {
                 observer.on(Event::Prune {
                     node: id,
                     reason: PruneReason::NoOverlap,
