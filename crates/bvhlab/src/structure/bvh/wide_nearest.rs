@@ -36,14 +36,17 @@ fn bound_lanes<const DIM: usize>(
     let mut squared = [0.0f32; WIDTH];
     for (axis, &p) in point.iter().enumerate().take(DIM) {
         for (lane, sq) in squared.iter_mut().enumerate() {
-            let offset = p.max(node.min[axis][lane]).min(node.max[axis][lane]) - p;
+            let offset = p
+                .max(node.planes[0][axis][lane])
+                .min(node.planes[1][axis][lane])
+                - p;
             *sq += offset * offset;
         }
     }
     let mut mask = 0;
     for (lane, &sq) in squared.iter().enumerate() {
         #[expect(clippy::neg_cmp_op_on_partial_ord, reason = "NaN must not prune")]
-        let kept = !(sq > reach_sq) && node.min[0][lane] <= node.max[0][lane];
+        let kept = !(sq > reach_sq) && node.planes[0][0][lane] <= node.planes[1][0][lane];
         mask |= u32::from(kept) << lane;
     }
     (squared, mask)

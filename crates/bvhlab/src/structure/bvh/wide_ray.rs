@@ -23,12 +23,13 @@ use crate::structure::{Hit, HitTracker};
 use crate::{Primitive, Ray, Vector};
 
 /// The ray as the four-lane test reads it: per axis, the slack-shifted origins and the
-/// inverse direction, and whether the ray enters through the `max` plane.
+/// inverse direction, and which planes it enters through (1, the `max` planes, where the
+/// direction is negative).
 struct LaneRay {
     origin_near: [f32; 3],
     origin_far: [f32; 3],
     inv_dir: [f32; 3],
-    negative: [bool; 3],
+    entry_planes: [usize; 3],
 }
 
 impl LaneRay {
@@ -43,7 +44,7 @@ impl LaneRay {
             origin_near,
             origin_far,
             inv_dir,
-            negative: prepared.negative,
+            entry_planes: prepared.negative.map(usize::from),
         }
     }
 }
@@ -67,11 +68,8 @@ fn enter_lanes<const DIM: usize>(
     let mut t_enter = [0.0f32; WIDTH];
     let mut t_exit = [f32::INFINITY; WIDTH];
     for axis in 0..DIM {
-        let (near, far) = if ray.negative[axis] {
-            (&node.max[axis], &node.min[axis])
-        } else {
-            (&node.min[axis], &node.max[axis])
-        };
+        let entry = ray.entry_planes[axis] & 1;
+        let (near, far) = (&node.planes[entry][axis], &node.planes[entry ^ 1][axis]);
         let (o_near, o_far, inv) = (
             ray.origin_near[axis],
             ray.origin_far[axis],

@@ -29,10 +29,10 @@ pub const WIDTH: usize = 4;
 /// 128 bytes, aligned to a 64-byte cache line, so a node is exactly two lines:
 ///
 /// ```text
-/// offset   0  min     3 × [f32; 4]   per axis, the four children's lower planes
-/// offset  48  max     3 × [f32; 4]   per axis, their upper planes
-/// offset  96  child   [u32; 4]       inner child: its wide node; leaf child: first primitive
-/// offset 112  count   [u32; 4]       leaf child: primitive count (>= 1); inner child: 0
+/// offset   0  planes[0]  3 × [f32; 4]   per axis, the four children's lower planes (min)
+/// offset  48  planes[1]  3 × [f32; 4]   per axis, their upper planes (max)
+/// offset  96  child      [u32; 4]       inner child: its wide node; leaf child: first primitive
+/// offset 112  count      [u32; 4]       leaf child: primitive count (>= 1); inner child: 0
 /// ```
 ///
 /// An unused lane has the empty box (`min = +inf`, `max = -inf`), which every slab test
@@ -40,10 +40,10 @@ pub const WIDTH: usize = 4;
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[repr(C, align(64))]
 pub struct Bvh4Node {
-    /// `min[axis][lane]`: the lower planes of the children's boxes.
-    pub min: [[f32; WIDTH]; 3],
-    /// `max[axis][lane]`: the upper planes of the children's boxes.
-    pub max: [[f32; WIDTH]; 3],
+    /// `planes[0][axis][lane]`: the lower planes of the children's boxes (their `min`);
+    /// `planes[1][axis][lane]`: the upper ones (`max`). One array, so that the ray test
+    /// picks the plane it enters through by an index computed once per ray.
+    pub planes: [[[f32; WIDTH]; 3]; 2],
     /// Per lane: an inner child's wide node index, or a leaf child's first primitive (leaf
     /// order).
     pub child: [u32; WIDTH],
@@ -57,31 +57,30 @@ const _: () = assert!(size_of::<Bvh4Node>() == 128);
 impl Bvh4Node {
     /// A node with every lane unused.
     const EMPTY: Self = Self {
-        min: [[f32::INFINITY; WIDTH]; 3],
-        max: [[f32::NEG_INFINITY; WIDTH]; 3],
+        planes: [[[f32::INFINITY; WIDTH]; 3], [[f32::NEG_INFINITY; WIDTH]; 3]],
         child: [0; WIDTH],
         count: [0; WIDTH],
     };
 
     /// Whether lane `lane` holds a child (leaf or inner).
     pub fn is_used(&self, lane: usize) -> bool {
-        self.count[lane] > 0 || self.min[0][lane] <= self.max[0][lane]
+        self.count[lane] > 0 || self.planes[0][0][lane] <= self.planes[1][0][lane]
     }
 
     /// The box of lane `lane` (empty for an unused lane).
     pub fn lane_box<V: Vector>(&self, lane: usize) -> Aabb<V> {
         let (mut min, mut max) = (V::ZERO, V::ZERO);
         for axis in 0..V::DIM {
-            min.set_coord(axis, self.min[axis][lane]);
-            max.set_coord(axis, self.max[axis][lane]);
+            min.set_coord(axis, self.planes[0][axis][lane]);
+            max.set_coord(axis, self.planes[1][axis][lane]);
         }
         Aabb::new(min, max)
     }
 
     fn set_lane<V: Vector>(&mut self, lane: usize, volume: &Aabb<V>) {
         for axis in 0..V::DIM {
-            self.min[axis][lane] = volume.min.coord(axis);
-            self.max[axis][lane] = volume.max.coord(axis);
+            self.planes[0][axis][lane] = volume.min.coord(axis);
+            self.planes[1][axis][lane] = volume.max.coord(axis);
         }
     }
 }
