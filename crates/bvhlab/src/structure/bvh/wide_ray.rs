@@ -16,6 +16,8 @@
 //! [`NodeVolume::ray_entry`]: super::NodeVolume::ray_entry
 
 use super::MAX_DEPTH;
+use glam::Vec4;
+
 use super::volume::{GROW, PreparedRay};
 use super::wide_stack::{Lane, SHALLOW_DEPTH, capacity, visit_nearest};
 use super::wide_tree::{Bvh4, Bvh4Node, WIDTH};
@@ -90,11 +92,13 @@ fn enter_lanes<const DIM: usize>(
             };
         }
     }
-    let mut mask = 0;
-    for lane in 0..WIDTH {
-        let enters = t_enter[lane] <= t_exit[lane] * GROW && t_enter[lane] <= limit_grown;
-        mask |= u32::from(enters) << lane;
-    }
+    // The lanes' verdicts as a bit mask: glam's four-lane compare and `bitmask` (one
+    // `movmskps` with SSE), which the compiler does not find from a loop over the lanes
+    // when AVX-512 is enabled (it shifts mask registers lane by lane).
+    let enter = Vec4::from_array(t_enter);
+    let enters =
+        enter.cmple(Vec4::from_array(t_exit) * GROW) & enter.cmple(Vec4::splat(limit_grown));
+    let mask = enters.bitmask();
     (t_enter, mask)
 }
 
