@@ -68,10 +68,11 @@ fn main() {
     if want("build") {
         println!(
             "collapse to 4-wide: {collapse_ms:.1} ms, {} wide nodes ({} bytes, {:.2} lanes used \
-             per node), {:.1} bytes per triangle in all",
+             per node, {} levels), {:.1} bytes per triangle in all",
             wide.nodes().len(),
             wide.node_bytes(),
             wide.mean_fill(),
+            wide.depth(),
             wide.memory_bytes() as f64 / tris.len() as f64
         );
     }

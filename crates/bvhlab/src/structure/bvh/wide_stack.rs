@@ -65,6 +65,19 @@ pub(super) fn visit_nearest<const CAP: usize>(
     if mask.is_power_of_two() {
         return Lane::of(node, first, keys[first]);
     }
+    let rest = mask & (mask - 1);
+    if rest.is_power_of_two() {
+        // Two lanes, the commonest case: the farther waits (a tie keeps lane order).
+        let second = rest.trailing_zeros() as usize;
+        let (a, b) = (
+            Lane::of(node, first, keys[first]),
+            Lane::of(node, second, keys[second]),
+        );
+        let (near, far) = if b.key < a.key { (b, a) } else { (a, b) };
+        stack[*len] = far;
+        *len += 1;
+        return near;
+    }
     // Insertion by descending key into the top of the stack.
     let base = *len;
     let mut bits = mask;
