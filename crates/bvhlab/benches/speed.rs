@@ -1,7 +1,7 @@
 //! Criterion medians of issue 7's workload on the AABB tree over ogre.obj (124k triangles):
 //! the binned SAH build, ray first hit on coherent and incoherent rays, closest point, each
 //! unobserved (the fast walks) and, for rays, observed with the no-op observer (the walk the
-//! lab steps through). Skipped, with a message, when the shared meshes are absent.
+//! lab steps through); the collapse to the 4-wide tree (`Bvh4`) and its queries. Skipped, with a message, when the shared meshes are absent.
 //!
 //! Run: `cargo bench -p bvhlab --bench speed`.
 
@@ -11,6 +11,7 @@ mod workload;
 use std::hint::black_box;
 
 use bvhlab::prelude::*;
+use bvhlab::structure::bvh::Bvh4;
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use workload::{camera_rays, random_points, random_rays, shared_mesh};
 
@@ -26,6 +27,10 @@ fn speed(c: &mut Criterion) {
         b.iter(|| AabbTree3::build(black_box(tris)));
     });
     let tree = AabbTree3::build(tris);
+    group.bench_function("collapse to 4-wide", |b| {
+        b.iter(|| Bvh4::from_bvh(black_box(&tree)));
+    });
+    let wide = Bvh4::from_bvh(&tree);
     let bounds = mesh.bounds();
     for (name, rays) in [
         ("coherent", camera_rays(&bounds)),
@@ -36,6 +41,13 @@ fn speed(c: &mut Criterion) {
             b.iter(|| {
                 rays.iter()
                     .filter(|ray| tree.ray_first_hit(black_box(ray), f32::INFINITY).is_some())
+                    .count()
+            });
+        });
+        group.bench_function(format!("ray first hit 4-wide, {name}"), |b| {
+            b.iter(|| {
+                rays.iter()
+                    .filter(|ray| wide.ray_first_hit(black_box(ray), f32::INFINITY).is_some())
                     .count()
             });
         });
@@ -58,6 +70,15 @@ fn speed(c: &mut Criterion) {
             points
                 .iter()
                 .filter_map(|&p| tree.closest_point(black_box(p)))
+                .map(|n| n.distance)
+                .sum::<f32>()
+        });
+    });
+    group.bench_function("closest point 4-wide", |b| {
+        b.iter(|| {
+            points
+                .iter()
+                .filter_map(|&p| wide.closest_point(black_box(p)))
                 .map(|n| n.distance)
                 .sum::<f32>()
         });

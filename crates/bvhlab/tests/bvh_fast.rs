@@ -1,7 +1,7 @@
 //! The unobserved ray first hit and closest point of the AABB tree take their own, faster
-//! walks: they must answer exactly what the observed walks (and brute force) answer, bit for
-//! bit, on random scenes at tiny and huge scales, on rays parallel to the axes, and on the
-//! real meshes. The unlogged build (which costs only the planes that can win) must make the
+//! walks, and so do those of its 4-wide copy ([`Bvh4`]): they must answer exactly what the
+//! observed walks (and brute force) answer, bit for bit, on random scenes at tiny and huge
+//! scales, on rays parallel to the axes, and on the real meshes. The unlogged build (which costs only the planes that can win) must make the
 //! logged build's tree.
 
 mod bvh_common;
@@ -12,20 +12,26 @@ use bvh_common::{TestPrim, rays_for, rng};
 use bvhlab::glam::Vec3;
 use bvhlab::prelude::*;
 use bvhlab::structure::BruteForce;
-use bvhlab::structure::bvh::{BvhOptions, SplitMethod};
+use bvhlab::structure::bvh::{Bvh4, BvhOptions, SplitMethod, WIDTH};
 use rand::RngExt;
 use rand_chacha::ChaCha8Rng;
 
-/// Compares the fast and observed first hits on `rays` (and brute force on the first
+/// Compares the fast, wide and observed first hits on `rays` (and brute force on the first
 /// `brute_rays` of them); returns how many hit.
 fn check_rays(name: &str, tree: &AabbTree3, rays: &[Ray3], brute_rays: usize) -> usize {
     let brute = BruteForce::build(tree.primitives());
+    let wide = Bvh4::from_bvh(tree);
     let mut hits = 0;
     for (i, ray) in rays.iter().enumerate() {
         for t_max in [f32::INFINITY, 0.5] {
             let fast = tree.ray_first_hit(ray, t_max);
             let observed = tree.ray_first_hit_observed(ray, t_max, &mut ()).answer;
             assert_eq!(fast, observed, "{name}: ray {i} {ray:?}, t_max {t_max}");
+            assert_eq!(
+                wide.ray_first_hit(ray, t_max),
+                observed,
+                "{name}: wide, ray {i} {ray:?}, t_max {t_max}"
+            );
             if i < brute_rays {
                 assert_eq!(
                     fast,
@@ -39,10 +45,11 @@ fn check_rays(name: &str, tree: &AabbTree3, rays: &[Ray3], brute_rays: usize) ->
     hits
 }
 
-/// Compares the fast and observed closest points on `points` (and brute force on the first
-/// `brute_points` of them).
+/// Compares the fast, wide and observed closest points on `points` (and brute force on the
+/// first `brute_points` of them).
 fn check_points(name: &str, tree: &AabbTree3, points: &[Vec3], brute_points: usize) {
     let brute = BruteForce::build(tree.primitives());
+    let wide = Bvh4::from_bvh(tree);
     for (i, &point) in points.iter().enumerate() {
         let fast = tree.closest_point(point);
         let observed = tree.k_nearest_observed(point, 1, &mut ()).answer;
@@ -50,6 +57,11 @@ fn check_points(name: &str, tree: &AabbTree3, points: &[Vec3], brute_points: usi
             fast,
             observed.first().copied(),
             "{name}: point {i} {point:?}"
+        );
+        assert_eq!(
+            wide.closest_point(point),
+            fast,
+            "{name}: wide, point {i} {point:?}"
         );
         assert!(fast.is_some(), "{name}: no nearest to {point:?}");
         if i < brute_points {
@@ -176,4 +188,91 @@ fn real_meshes() {
         let points = box_points(&mut rng, &tris, 3000);
         check_points(name, &tree, &points, 100);
     }
+}
+
+/// The wide tree of a tree with one leaf (the root), or none, answers as brute force; and a
+/// collapse fills its nodes.
+#[test]
+fn wide_tree_edge_cases() {
+    let mut rng = rng(9);
+    let empty = Bvh4::from_bvh(&AabbTree3::build(&[]));
+    let ray = Ray3::new(Vec3::ZERO, Vec3::X).expect("a ray");
+    assert_eq!(empty.ray_first_hit(&ray, f32::INFINITY), None);
+    assert_eq!(empty.closest_point(Vec3::ZERO), None);
+    for n in [1, 3, 2000] {
+        let tris: Vec<Triangle3> = (0..n).map(|_| Triangle3::random(&mut rng, 10.0)).collect();
+        let tree = AabbTree3::build(&tris);
+        let wide = Bvh4::from_bvh(&tree);
+        assert_eq!(wide.len(), n);
+        let rays = box_rays(&mut rng, &tris, 400);
+        let hits = check_rays(&format!("{n} triangles"), &tree, &rays, 400);
+        assert!(hits > 0, "{n} triangles: no hit");
+        check_points(
+            &format!("{n} triangles"),
+            &tree,
+            &box_points(&mut rng, &tris, 100),
+            100,
+        );
+        // The collapse opens inner lanes until four are used: a node with fewer holds
+        // leaves only.
+        for (i, node) in wide.nodes().iter().enumerate() {
+            let used = (0..WIDTH).filter(|&lane| node.is_used(lane)).count();
+            let all_leaves = (0..used).all(|lane| node.count[lane] > 0);
+            assert!(
+                used == WIDTH || all_leaves || n < 4,
+                "{n}: node {i} {node:?}"
+            );
+        }
+        let inner = tree.nodes().iter().filter(|n| !n.is_leaf()).count();
+        // Each wide node stands for a distinct inner node, the opened ones for none.
+        assert!(
+            wide.nodes().len() <= inner.max(1),
+            "{n}: {} wide nodes",
+            wide.nodes().len()
+        );
+    }
+}
+
+/// The wide tree over segments in 2D answers as brute force (its third axis is unused).
+#[test]
+fn wide_tree_in_2d() {
+    use bvhlab::glam::Vec2;
+    let mut rng = rng(10);
+    let point = |rng: &mut ChaCha8Rng| {
+        Vec2::new(rng.random_range(-10.0..10.0), rng.random_range(-10.0..10.0))
+    };
+    let segs: Vec<Segment2> = (0..1000)
+        .map(|_| {
+            let a = point(&mut rng);
+            Segment2::new(a, a + (point(&mut rng) * 0.05))
+        })
+        .collect();
+    let tree = AabbTree2::build(&segs);
+    let wide = Bvh4::from_bvh(&tree);
+    let brute = BruteForce::build(&segs);
+    let mut hits = 0;
+    for i in 0..2000 {
+        let (origin, target) = (point(&mut rng), point(&mut rng));
+        let Ok(ray) = Ray2::new(origin, target - origin) else {
+            continue;
+        };
+        let answer = wide.ray_first_hit(&ray, f32::INFINITY);
+        assert_eq!(
+            answer,
+            brute.ray_first_hit(&ray, f32::INFINITY),
+            "ray {i} {ray:?}"
+        );
+        assert_eq!(
+            answer,
+            tree.ray_first_hit(&ray, f32::INFINITY),
+            "ray {i} {ray:?}"
+        );
+        hits += usize::from(answer.is_some());
+        assert_eq!(
+            wide.closest_point(origin),
+            brute.closest_point(origin),
+            "point {i}"
+        );
+    }
+    assert!(hits > 500, "only {hits} hits");
 }

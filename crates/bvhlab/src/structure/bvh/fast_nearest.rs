@@ -130,6 +130,6 @@ where
 /// cover both with room (see [`NodeVolume::distance_bound_squared`]). Visiting a few
 /// nodes more than the observed walk cannot change the answer; visiting fewer could.
 #[inline]
-fn reach_squared(reach: f32) -> f32 {
+pub(super) fn reach_squared(reach: f32) -> f32 {
     reach * reach * (1.0 + 4e-6) + 4.0 * f32::from_bits(1)
 }

@@ -1,0 +1,131 @@
+//! The closest point in a [`Bvh4`]: the squared distance bound of four boxes at once, then
+//! the boxes that may hold something nearer than the best, nearest first.
+//!
+//! The four-lane bound is the box's
+//! [`distance_bound_squared`](super::NodeVolume::distance_bound_squared) over fixed-size
+//! arrays, one lane per child (clamp the point into the box, sum the squared offsets in axis
+//! order), which the compiler turns into vector instructions.
+//!
+//! The answer is the binary walks' (fast and observed), bit for bit: the same primitive
+//! distance, the same pruning rule as the binary fast walk (a child is skipped when its
+//! squared bound exceeds the square of the best distance times [`GROW`] plus the query's
+//! slack, with room for rounding), and the best is the least `(distance, index)` over every
+//! primitive not pruned.
+
+use super::MAX_DEPTH;
+use super::fast_nearest::reach_squared;
+use super::volume::{GROW, query_slack};
+use super::wide_stack::{Lane, SHALLOW_DEPTH, capacity, visit_nearest};
+use super::wide_tree::{Bvh4, Bvh4Node, WIDTH};
+use crate::structure::Nearest;
+use crate::{Primitive, Vector};
+
+/// The squared distance bounds of the four children's boxes, and a bit set for each lane
+/// that is used and whose bound is not beyond `reach_sq` (a NaN bound is kept, as the
+/// binary walk keeps it; an unused lane's empty box has `min > max`).
+#[expect(
+    clippy::inline_always,
+    reason = "the hot step of the walk: left out of line it costs a call per node (measured)"
+)]
+#[inline(always)]
+fn bound_lanes<const DIM: usize>(
+    node: &Bvh4Node,
+    point: &[f32; 3],
+    reach_sq: f32,
+) -> ([f32; WIDTH], u32) {
+    let mut squared = [0.0f32; WIDTH];
+    for (axis, &p) in point.iter().enumerate().take(DIM) {
+        for (lane, sq) in squared.iter_mut().enumerate() {
+            let offset = p
+                .max(node.planes[0][axis][lane])
+                .min(node.planes[1][axis][lane])
+                - p;
+            *sq += offset * offset;
+        }
+    }
+    let mut mask = 0;
+    for (lane, &sq) in squared.iter().enumerate() {
+        #[expect(clippy::neg_cmp_op_on_partial_ord, reason = "NaN must not prune")]
+        let kept = !(sq > reach_sq) && node.planes[0][0][lane] <= node.planes[1][0][lane];
+        mask |= u32::from(kept) << lane;
+    }
+    (squared, mask)
+}
+
+impl<P: Primitive> Bvh4<P> {
+    /// The primitive nearest to `point` (ties by the lower index), none for a non-finite
+    /// point: what the binary tree's
+    /// [`closest_point`](crate::structure::SpatialIndex::closest_point) answers, bit for bit.
+    pub fn closest_point(&self, point: P::Point) -> Option<Nearest<P::Point>> {
+        if self.nodes.is_empty() || !point.is_finite() {
+            return None;
+        }
+        if self.depth <= SHALLOW_DEPTH {
+            self.closest_walk::<{ capacity(SHALLOW_DEPTH) }>(point)
+        } else {
+            self.closest_walk::<{ capacity(MAX_DEPTH + 1) }>(point)
+        }
+    }
+
+    /// The walk, with a stack of `CAP` entries (enough for the tree's depth).
+    fn closest_walk<const CAP: usize>(&self, point: P::Point) -> Option<Nearest<P::Point>> {
+        let slack = query_slack(point);
+        let mut coords = [0.0; 3];
+        for (axis, c) in coords.iter_mut().enumerate().take(P::Point::DIM) {
+            *c = point.coord(axis);
+        }
+        let mut best: Option<Nearest<P::Point>> = None;
+        let mut reach_sq = f32::INFINITY;
+        let mut stack = [Lane::ROOT; CAP];
+        let mut len = 0;
+        let mut current = Lane::ROOT;
+        loop {
+            if current.count > 0 {
+                let range = current.child as usize..(current.child + current.count) as usize;
+                for (prim, &id) in self.leaf_prims[range.clone()]
+                    .iter()
+                    .zip(&self.leaf_ids[range])
+                {
+                    let q = prim.closest_point(point);
+                    let distance = (q - point).length();
+                    let id = id as usize;
+                    let better = best.is_none_or(|b| {
+                        distance < b.distance || (distance == b.distance && id < b.prim)
+                    });
+                    if better && !distance.is_nan() {
+                        best = Some(Nearest {
+                            prim: id,
+                            point: q,
+                            distance,
+                        });
+                        reach_sq = reach_squared(distance * GROW + slack);
+                    }
+                }
+            } else {
+                let node = &self.nodes[current.child as usize];
+                let (squared, mask) = if P::Point::DIM == 3 {
+                    bound_lanes::<3>(node, &coords, reach_sq)
+                } else {
+                    bound_lanes::<2>(node, &coords, reach_sq)
+                };
+                if mask != 0 {
+                    current = visit_nearest(node, mask, &squared, &mut stack, &mut len);
+                    continue;
+                }
+            }
+            // Pop the next waiting child the best has not moved in front of.
+            loop {
+                if len == 0 {
+                    return best;
+                }
+                len -= 1;
+                let waiting = stack[len];
+                #[expect(clippy::neg_cmp_op_on_partial_ord, reason = "NaN must not prune")]
+                if !(waiting.key > reach_sq) {
+                    current = waiting;
+                    break;
+                }
+            }
+        }
+    }
+}
