@@ -112,9 +112,10 @@ fn main() {
             points: scene.work.points.len(),
             rows,
         });
-    }
-    match report::write(&run_result, &out) {
-        Ok(files) => println!("\nwrote {files}"),
-        Err(e) => println!("\ncould not write the results into {}: {e}", out.display()),
+        // After every scene, so that an interrupted run keeps what it measured.
+        match report::write(&run_result, &out) {
+            Ok(files) => println!("wrote {files}"),
+            Err(e) => println!("could not write the results into {}: {e}", out.display()),
+        }
     }
 }
