@@ -127,7 +127,8 @@ impl Library for TinyBvh {
 }
 
 /// tinybvh's 8-wide CPU layout (AVX2), converted from a binary BVH split to leaves of at most
-/// 4 triangles (what the conversion requires); the conversion is timed with the build.
+/// 4 triangles (what the conversion requires); the conversion is timed with the build. Its
+/// `Intersect` returns 0 rather than a step count, so it reports no cost.
 #[cfg(target_feature = "avx2")]
 pub struct TinyBvh8;
 
@@ -158,13 +159,6 @@ impl Library for TinyBvh8 {
 
     fn first_hit(tree: &tinybvh_rs::bvh8_cpu::BVH, ray: &Self::Ray) -> Option<f32> {
         hit(tree, ray).0
-    }
-
-    fn first_hit_cost(tree: &tinybvh_rs::bvh8_cpu::BVH, ray: &Self::Ray) -> RayCost {
-        RayCost {
-            nodes: Some(u64::from(hit(tree, ray).1)),
-            prims: None,
-        }
     }
 
     fn facts(_tree: &tinybvh_rs::bvh8_cpu::BVH) -> TreeFacts {
