@@ -77,5 +77,5 @@ if [ -n "$native" ]; then
   RUSTFLAGS="-C target-cpu=native" CARGO_TARGET_DIR="$target/native" \
     cargo bench -p bvhlab-bench --bench peers --no-run
   RUSTFLAGS="-C target-cpu=native" CARGO_TARGET_DIR="$target/native" \
-    BVHLAB_BENCH_OUT=bench/native "${pin[@]}" cargo bench -p bvhlab-bench --bench peers -- $quick
+    BVHLAB_BENCH_OUT="$PWD/bench/native" "${pin[@]}" cargo bench -p bvhlab-bench --bench peers -- $quick
 fi
