@@ -1,7 +1,13 @@
 //! Benchmark scenes for bvh-lab: procedural meshes with fixed parameters (and seeds), the
-//! shared real meshes when present, and camera rays.
+//! shared real meshes when present, and camera rays; [`workload`] puts them together into the
+//! inputs of the comparison with peer libraries (issue 7), natively and in WebAssembly.
+
+pub mod rng;
+pub mod workload;
 
 use std::path::PathBuf;
+
+use rng::SplitMix64;
 
 use bvhlab::glam::{Vec2, Vec3};
 use bvhlab::{Ray3, Segment2, Triangle3};
@@ -39,15 +45,8 @@ pub fn torus_with(n: usize) -> Vec<Triangle3> {
 
 /// `n` random segments in the unit square, from a fixed-seed generator (2D scenes).
 pub fn random_segments(n: usize, seed: u64) -> Vec<Segment2> {
-    let mut state = seed;
-    let mut next = move || {
-        // SplitMix64 (Steele, Lea and Flood, 2014): fixed, dependency-free randomness.
-        state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32
-    };
+    let mut rng = SplitMix64::new(seed);
+    let mut next = move || rng.next_f32();
     let length = 2.0 / (n as f32).sqrt();
     (0..n)
         .map(|_| {

@@ -1,0 +1,127 @@
+//! The WebAssembly half of the peer comparison (issue 7): bvhlab's AABB tree and the
+//! comparison's workload ([`bvhlab_bench::workload`]) compiled for `wasm32-unknown-unknown`
+//! (with `-C target-feature=+simd128`), for `js/run.mjs` to time in node beside
+//! three-mesh-bvh on exactly the same triangles, rays and points.
+//!
+//! The module hands its inputs to JavaScript as flat `Float32Array`s (9 floats per triangle,
+//! 7 per ray: origin, unit direction, `t_max`; 3 per point), and answers as one float per
+//! query (`-1` for no hit). Timing is done by the caller around [`WasmBench::build`],
+//! [`WasmBench::first_hits`] and [`WasmBench::closest`].
+
+use bvhlab::{AabbTree3, Ray3, SpatialIndex, Triangle3};
+use bvhlab_bench::workload::{RayKind, Workload, WorkloadSize, triangles_from_obj};
+use wasm_bindgen::prelude::*;
+
+/// One scene: its triangles, its workload and (once built) bvhlab's tree.
+#[wasm_bindgen]
+pub struct WasmBench {
+    tris: Vec<Triangle3>,
+    work: Workload,
+    tree: Option<AabbTree3>,
+}
+
+#[wasm_bindgen]
+impl WasmBench {
+    /// Reads an OBJ file and generates the workload: the full one (or the quick one), with
+    /// at most `max_points` closest-point queries.
+    ///
+    /// # Errors
+    /// The OBJ reader's message.
+    #[wasm_bindgen(constructor)]
+    pub fn new(obj: &[u8], quick: bool, max_points: usize) -> Result<WasmBench, JsError> {
+        let tris = triangles_from_obj(obj).map_err(|e| JsError::new(&e))?;
+        let mut size = if quick {
+            WorkloadSize::QUICK
+        } else {
+            WorkloadSize::FULL
+        };
+        size.points = size.points.min(max_points);
+        let work = Workload::generate(&tris, &size);
+        Ok(Self {
+            tris,
+            work,
+            tree: None,
+        })
+    }
+
+    /// The number of triangles.
+    pub fn triangle_count(&self) -> usize {
+        self.tris.len()
+    }
+
+    /// The triangles' corners, 9 floats per triangle (a non-indexed position buffer).
+    pub fn positions(&self) -> Vec<f32> {
+        self.tris
+            .iter()
+            .flat_map(|t| [t.a, t.b, t.c])
+            .flat_map(|p| p.to_array())
+            .collect()
+    }
+
+    /// The ray kinds' names, in the order `rays` and `first_hits` take them.
+    pub fn kind_names() -> Vec<String> {
+        RayKind::ALL.iter().map(|k| k.name().to_owned()).collect()
+    }
+
+    /// The rays of kind `kind` (an index into `kind_names`), 7 floats each.
+    pub fn rays(&self, kind: usize) -> Vec<f32> {
+        self.kind_rays(kind)
+            .iter()
+            .flat_map(|r| {
+                let (o, d) = (r.origin, r.dir);
+                [o.x, o.y, o.z, d.x, d.y, d.z, r.t_max]
+            })
+            .collect()
+    }
+
+    /// The closest-point query points, 3 floats each.
+    pub fn points(&self) -> Vec<f32> {
+        self.work
+            .points
+            .iter()
+            .flat_map(bvhlab::glam::Vec3::to_array)
+            .collect()
+    }
+
+    /// Builds bvhlab's AABB tree (binned SAH), replacing the previous one.
+    pub fn build(&mut self) {
+        self.tree = Some(AabbTree3::build(&self.tris));
+    }
+
+    /// The first-hit distance of every ray of kind `kind`, `-1` for a miss (or before
+    /// `build`).
+    pub fn first_hits(&self, kind: usize) -> Vec<f32> {
+        let Some(tree) = &self.tree else {
+            return Vec::new();
+        };
+        self.kind_rays(kind)
+            .iter()
+            .map(|r| {
+                Ray3::new(r.origin, r.dir)
+                    .ok()
+                    .and_then(|ray| tree.ray_first_hit(&ray, r.t_max))
+                    .map_or(-1.0, |hit| hit.t)
+            })
+            .collect()
+    }
+
+    /// The distance from every query point to the nearest triangle (`-1` before `build`).
+    pub fn closest(&self) -> Vec<f32> {
+        let Some(tree) = &self.tree else {
+            return Vec::new();
+        };
+        self.work
+            .points
+            .iter()
+            .map(|&p| tree.closest_point(p).map_or(-1.0, |n| n.distance))
+            .collect()
+    }
+}
+
+impl WasmBench {
+    fn kind_rays(&self, kind: usize) -> &[bvhlab_bench::workload::BenchRay] {
+        RayKind::ALL
+            .get(kind)
+            .map_or(&[], |&k| self.work.rays_of(k))
+    }
+}

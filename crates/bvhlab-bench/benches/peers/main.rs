@@ -1,0 +1,121 @@
+//! The side-by-side comparison of issue 7: bvhlab's AABB tree against the peer libraries on
+//! the same triangles, rays and points ([`bvhlab_bench::workload`]), single-threaded, medians
+//! of 5. Prints one table per scene and writes `bench/results.json` and `bench/RESULTS.md`
+//! (with the WebAssembly results of `bench/wasm.json` when `compare.sh` has just made them).
+//!
+//! Run everything with `bash crates/bvhlab-bench/compare.sh` (pinned to one core, native and
+//! WebAssembly), or the native half alone with
+//! `cargo bench -p bvhlab-bench --bench peers [-- --quick]`.
+//!
+//! Environment: `BVHLAB_BENCH_QUICK=1` (or `--quick`): a smoke run (small camera, few rays
+//! and points, 2 repeats, the bunny only); `BVHLAB_BENCH_SCENES=bunny,ogre` picks scenes;
+//! `BVHLAB_BENCH_OUT=DIR` writes elsewhere than `bench/`.
+
+#![expect(
+    clippy::print_stdout,
+    reason = "a benchmark program: its table is its output"
+)]
+
+mod lib_bvh;
+mod lib_bvhlab;
+mod lib_obvhs;
+mod lib_parry;
+mod lib_tinybvh;
+mod library;
+mod measure;
+mod report;
+mod report_md;
+
+use std::path::PathBuf;
+
+use bvhlab_bench::workload::{SceneId, Workload, WorkloadSize, bounds};
+
+use crate::library::Library;
+use crate::measure::{Answers, LibResult, Repeats, measure};
+use crate::report::{Run, SceneResult};
+
+/// Runs library `L` on one scene, prints its row and appends it.
+fn run<L: Library>(
+    scene: &SceneData,
+    repeats: Repeats,
+    reference: Option<&Answers>,
+    rows: &mut Vec<LibResult>,
+) -> Answers {
+    let (result, answers) =
+        measure::<L>(&scene.tris, &scene.work, repeats, reference, scene.radius);
+    println!("{}", report::row_text(&result, scene.tris.len()));
+    rows.push(result);
+    answers
+}
+
+/// A scene's triangles and workload.
+struct SceneData {
+    tris: Vec<bvhlab::Triangle3>,
+    work: Workload,
+    radius: f32,
+}
+
+fn main() {
+    let quick = std::env::args().any(|a| a == "--quick")
+        || std::env::var("BVHLAB_BENCH_QUICK").is_ok_and(|v| v == "1");
+    let size = if quick {
+        WorkloadSize::QUICK
+    } else {
+        WorkloadSize::FULL
+    };
+    let repeats = Repeats {
+        count: if quick { 2 } else { 5 },
+    };
+    let scenes: Vec<SceneId> = match std::env::var("BVHLAB_BENCH_SCENES") {
+        Ok(list) => SceneId::ALL
+            .into_iter()
+            .filter(|s| list.split(',').any(|name| name.trim() == s.name()))
+            .collect(),
+        Err(_) if quick => vec![SceneId::Bunny],
+        Err(_) => SceneId::ALL.to_vec(),
+    };
+    let out = std::env::var_os("BVHLAB_BENCH_OUT").map_or_else(
+        || PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../bench"),
+        PathBuf::from,
+    );
+    let mut run_result = Run::new(quick, &size, repeats);
+    println!("{}", report::header_text());
+    for id in scenes {
+        let tris = match id.triangles() {
+            Ok(tris) => tris,
+            Err(e) => {
+                println!("skipping {}: {e}", id.name());
+                continue;
+            }
+        };
+        let (lo, hi) = bounds(&tris);
+        let work = Workload::generate(&tris, &size);
+        let scene = SceneData {
+            radius: (hi - lo).length() * 0.5,
+            tris,
+            work,
+        };
+        println!("\n{} ({} triangles)", id.name(), scene.tris.len());
+        let mut rows = Vec::new();
+        let reference = run::<lib_bvhlab::Bvhlab>(&scene, repeats, None, &mut rows);
+        let r = Some(&reference);
+        run::<lib_obvhs::Obvhs>(&scene, repeats, r, &mut rows);
+        run::<lib_parry::Parry>(&scene, repeats, r, &mut rows);
+        run::<lib_bvh::SvenstaroBvh>(&scene, repeats, r, &mut rows);
+        run::<lib_tinybvh::TinyBvh>(&scene, repeats, r, &mut rows);
+        #[cfg(target_feature = "avx2")]
+        run::<lib_tinybvh::TinyBvh8>(&scene, repeats, r, &mut rows);
+        run_result.scenes.push(SceneResult {
+            name: id.name(),
+            triangles: scene.tris.len(),
+            rays: scene.work.rays.iter().map(|(k, r)| (*k, r.len())).collect(),
+            points: scene.work.points.len(),
+            rows,
+        });
+        // After every scene, so that an interrupted run keeps what it measured.
+        match report::write(&run_result, &out) {
+            Ok(files) => println!("wrote {files}"),
+            Err(e) => println!("could not write the results into {}: {e}", out.display()),
+        }
+    }
+}

@@ -1,0 +1,81 @@
+#!/usr/bin/env bash
+# The side-by-side comparison of issue 7, in one command (from anywhere in the repository):
+#
+#   bash crates/bvhlab-bench/compare.sh            # everything: about 15-20 minutes
+#   bash crates/bvhlab-bench/compare.sh --quick    # a smoke run: the bunny, small workload
+#   bash crates/bvhlab-bench/compare.sh --native   # also a second native run with
+#                                                  # -C target-cpu=native (adds tinybvh's
+#                                                  # BVH8_CPU), into bench/native/
+#
+# 1. builds bvhlab for wasm32-unknown-unknown with +simd128 (crates/bvhlab-bench-wasm) and its
+#    bindings (wasm-bindgen --target nodejs), installs three and three-mesh-bvh (pinned in
+#    crates/bvhlab-bench-wasm/js/package-lock.json), and times both in one node process
+#    (bench/wasm.json);
+# 2. runs the native comparison (cargo bench --bench peers), which writes bench/results.json
+#    and bench/RESULTS.md with the WebAssembly results merged in.
+# Every timed run is pinned to one core (taskset) and single-threaded: tinybvh's C++ is
+# compiled with NO_THREADED_BUILDS, the Rust peers without their parallel features.
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+export PATH="${CARGO_HOME:-$HOME/.cargo}/bin:$PATH"
+
+quick=""
+native=""
+for arg in "$@"; do
+  case "$arg" in
+    --quick) quick="--quick" ;;
+    --native) native=1 ;;
+    *) echo "compare.sh: unknown argument $arg (use --quick, --native)" >&2; exit 2 ;;
+  esac
+done
+
+target="${CARGO_TARGET_DIR:-target}"
+# The last CPU: on a 2-core machine, the one the shell is less likely to be using.
+cpu=$(( $(nproc) - 1 ))
+pin=()
+if command -v taskset >/dev/null; then pin=(taskset -c "$cpu"); fi
+# tinybvh builds big meshes on a thread pool unless told not to (cc passes CXXFLAGS on).
+export CXXFLAGS="${CXXFLAGS:-} -DNO_THREADED_BUILDS"
+mkdir -p bench
+rm -f bench/wasm.json
+
+# --- 1. WebAssembly ----------------------------------------------------------------------
+if ! rustup target list --installed | grep -qx wasm32-unknown-unknown; then
+  rustup target add wasm32-unknown-unknown
+fi
+# The wasm-bindgen CLI must be exactly the version of the wasm-bindgen crate in Cargo.lock.
+version=$(awk '
+  /^\[\[package\]\]/ { in_wb = 0 }
+  /^name = "wasm-bindgen"$/ { in_wb = 1 }
+  in_wb && /^version = / { gsub(/"/, "", $3); print $3; exit }
+' Cargo.lock)
+if [ "$(wasm-bindgen --version 2>/dev/null || true)" != "wasm-bindgen $version" ]; then
+  echo "Installing wasm-bindgen-cli $version (about 3 minutes)..."
+  cargo install wasm-bindgen-cli --version "$version"
+fi
+RUSTFLAGS="-C target-feature=+simd128" \
+  cargo build -p bvhlab-bench-wasm --release --target wasm32-unknown-unknown
+pkg="$target/bench-wasm"
+rm -rf "$pkg"
+wasm-bindgen --target nodejs --no-typescript --out-dir "$pkg" \
+  "$target/wasm32-unknown-unknown/release/bvhlab_bench_wasm.wasm"
+(cd crates/bvhlab-bench-wasm/js && npm ci --no-audit --no-fund --loglevel=error)
+meshes=../shared/data/meshes
+if [ -d "$meshes" ]; then
+  "${pin[@]}" node crates/bvhlab-bench-wasm/js/run.mjs --pkg "$(realpath "$pkg")" \
+    --meshes "$meshes" --out bench/wasm.json $quick
+else
+  echo "compare.sh: $meshes is missing: no WebAssembly comparison (it runs on the real meshes)"
+fi
+
+# --- 2. Native ---------------------------------------------------------------------------
+cargo bench -p bvhlab-bench --bench peers --no-run
+"${pin[@]}" cargo bench -p bvhlab-bench --bench peers -- $quick
+
+if [ -n "$native" ]; then
+  # A second build of everything with the host's instruction set, in its own target folder.
+  RUSTFLAGS="-C target-cpu=native" CARGO_TARGET_DIR="$target/native" \
+    cargo bench -p bvhlab-bench --bench peers --no-run
+  RUSTFLAGS="-C target-cpu=native" CARGO_TARGET_DIR="$target/native" \
+    BVHLAB_BENCH_OUT="$PWD/bench/native" "${pin[@]}" cargo bench -p bvhlab-bench --bench peers -- $quick
+fi

@@ -1,0 +1,453 @@
+//! The inputs of the side-by-side comparison with peer libraries (issue 7): scenes, rays and
+//! closest-point query points, all deterministic (fixed seeds, fixed cameras), so that every
+//! library, natively and in WebAssembly, answers exactly the same questions.
+//!
+//! - **Scenes** ([`SceneId`]): the three real meshes of `../shared/data/meshes` (Stanford
+//!   bunny, dragon, ogre; read with the core's OBJ reader), a torus of about 420k triangles and
+//!   a displaced sphere of about 2M triangles ([`displaced_sphere`], seeded).
+//! - **Rays** ([`RayKind`]), every direction of unit length so that `t` is a distance for
+//!   every library (some normalise what they are given):
+//!   - *primary*: a pinhole camera of `width × height` pixels (640 × 480) from each of a few
+//!     fixed viewpoints around the mesh, framing its bounding sphere (coherent);
+//!   - *shadow*: from each primary hit towards one fixed point light, limited to the light's
+//!     distance (`t_max`), so a hit means "in shadow";
+//!   - *diffuse*: from each primary hit, one cosine-weighted direction about the normal facing
+//!     the camera (seeded; incoherent);
+//!   - *random*: origins uniform in the mesh's bounding box, directions uniform on the sphere:
+//!     the issue's "300k random rays inside the bounding box".
+//!
+//!   Secondary rays start a small offset (1e-3 of the bounding sphere's radius) off the surface
+//!   along the facing normal, so that they do not hit their own triangle again.
+//! - **Points**: uniform in the mesh's box grown to 1.5 times its size about its centre, for
+//!   closest-point queries.
+//!
+//! The primary hits that the secondary rays start from are found with bvhlab's AABB tree; its
+//! answers are exact (equal to brute force), so the rays do not depend on how fast it is.
+
+use bvhlab::glam::Vec3;
+use bvhlab::{AabbTree3, Mesh, Ray3, SpatialIndex, Triangle3};
+
+use crate::rng::SplitMix64;
+use crate::{camera_rays, shared_mesh, torus_with};
+
+/// A scene of the comparison.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SceneId {
+    /// `stanford-bunny.obj`, 69,451 triangles, about 0.15 units wide.
+    Bunny,
+    /// `dragon.obj`, 100,000 triangles.
+    Dragon,
+    /// `ogre.obj`, 124,008 triangles (the issue's table).
+    Ogre,
+    /// A torus of about 420k triangles ([`torus_with`]).
+    Torus,
+    /// A displaced sphere of about 2M triangles ([`displaced_sphere`]).
+    DisplacedSphere,
+}
+
+impl SceneId {
+    /// Every scene, smallest real mesh first.
+    pub const ALL: [Self; 5] = [
+        Self::Bunny,
+        Self::Dragon,
+        Self::Ogre,
+        Self::Torus,
+        Self::DisplacedSphere,
+    ];
+
+    /// The scene's short name (for tables and command lines).
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Bunny => "bunny",
+            Self::Dragon => "dragon",
+            Self::Ogre => "ogre",
+            Self::Torus => "torus-420k",
+            Self::DisplacedSphere => "sphere-2m",
+        }
+    }
+
+    /// The OBJ file of a real mesh in `../shared/data/meshes`, `None` for generated scenes.
+    pub fn obj_file(self) -> Option<&'static str> {
+        match self {
+            Self::Bunny => Some("stanford-bunny.obj"),
+            Self::Dragon => Some("dragon.obj"),
+            Self::Ogre => Some("ogre.obj"),
+            Self::Torus | Self::DisplacedSphere => None,
+        }
+    }
+
+    /// The scene's triangles: generated, or read from the shared meshes.
+    ///
+    /// # Errors
+    /// A message when a real mesh is missing or does not parse.
+    pub fn triangles(self) -> Result<Vec<Triangle3>, String> {
+        match self {
+            Self::Torus => Ok(torus_with(420_000)),
+            Self::DisplacedSphere => Ok(displaced_sphere(2_000_000, 0x5EED_2026)),
+            real => {
+                let file = real.obj_file().unwrap_or_default();
+                let path = shared_mesh(file)
+                    .ok_or_else(|| format!("{file} is not in ../shared/data/meshes"))?;
+                let bytes = std::fs::read(&path).map_err(|e| format!("{file}: {e}"))?;
+                triangles_from_obj(&bytes).map_err(|e| format!("{file}: {e}"))
+            }
+        }
+    }
+}
+
+/// The triangles of an OBJ file, read with the core's reader.
+///
+/// # Errors
+/// The reader's message when the file does not parse.
+pub fn triangles_from_obj(bytes: &[u8]) -> Result<Vec<Triangle3>, String> {
+    Mesh::from_obj(bytes)
+        .map(|mesh| mesh.triangles().to_vec())
+        .map_err(|e| e.to_string())
+}
+
+/// A sphere of radius 1 with about `n` triangles (a latitude-longitude grid), its radius
+/// displaced by the sum of eight random waves `0.03 · sin(k · p + φ)` (directions, frequencies
+/// 3-15 and phases drawn from `seed`): a lumpy surface with no two triangles alike.
+pub fn displaced_sphere(n: usize, seed: u64) -> Vec<Triangle3> {
+    let mut rng = SplitMix64::new(seed);
+    let waves: Vec<(Vec3, f32)> = (0..8)
+        .map(|_| {
+            let k = unit_vector(&mut rng) * (3.0 + 12.0 * rng.next_f32());
+            (k, std::f32::consts::TAU * rng.next_f32())
+        })
+        .collect();
+    let radius = |p: Vec3| {
+        1.0 + waves
+            .iter()
+            .map(|(k, phase)| 0.03 * (k.dot(p) + phase).sin())
+            .sum::<f32>()
+    };
+    // 2 · rings · sectors triangles, with sectors = 2 · rings (square-ish cells).
+    let rings = ((n as f32 / 4.0).sqrt() as usize).max(2);
+    let sectors = 2 * rings;
+    let vertex = |i: usize, j: usize| {
+        let theta = std::f32::consts::PI * i as f32 / rings as f32;
+        let phi = std::f32::consts::TAU * (j % sectors) as f32 / sectors as f32;
+        let p = Vec3::new(
+            theta.sin() * phi.cos(),
+            theta.sin() * phi.sin(),
+            theta.cos(),
+        );
+        p * radius(p)
+    };
+    let grid: Vec<Vec3> = (0..=rings)
+        .flat_map(|i| (0..sectors).map(move |j| (i, j)))
+        .map(|(i, j)| vertex(i, j))
+        .collect();
+    let at = |i: usize, j: usize| grid[i * sectors + j % sectors];
+    let mut tris = Vec::with_capacity(2 * rings * sectors);
+    for i in 0..rings {
+        for j in 0..sectors {
+            let (a, b, c, d) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+            // The cells at the poles have two corners at the pole: keep their one real triangle.
+            if i + 1 < rings {
+                tris.push(Triangle3::new(a, b, c));
+            }
+            if i > 0 {
+                tris.push(Triangle3::new(a, c, d));
+            }
+        }
+    }
+    tris
+}
+
+/// A ray of the workload: unit direction, and the largest `t` that counts as a hit.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BenchRay {
+    /// Where the ray starts.
+    pub origin: Vec3,
+    /// Its direction, of unit length.
+    pub dir: Vec3,
+    /// Hits beyond this distance do not count (infinite but for shadow rays).
+    pub t_max: f32,
+}
+
+/// The kinds of rays, from coherent to incoherent.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RayKind {
+    /// Camera rays through the pixels of a pinhole camera.
+    Primary,
+    /// From the primary hits towards a point light.
+    Shadow,
+    /// Cosine-weighted bounces from the primary hits.
+    Diffuse,
+    /// Random origins in the bounding box, random directions.
+    Random,
+}
+
+impl RayKind {
+    /// Every kind, in the order of the tables.
+    pub const ALL: [Self; 4] = [Self::Primary, Self::Shadow, Self::Diffuse, Self::Random];
+
+    /// The kind's short name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Primary => "primary",
+            Self::Shadow => "shadow",
+            Self::Diffuse => "diffuse",
+            Self::Random => "random",
+        }
+    }
+}
+
+/// How much work a run asks for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct WorkloadSize {
+    /// Camera image width in pixels.
+    pub width: usize,
+    /// Camera image height in pixels.
+    pub height: usize,
+    /// Camera viewpoints (at most [`VIEWPOINTS`]`.len()`).
+    pub viewpoints: usize,
+    /// Random rays in the bounding box.
+    pub random_rays: usize,
+    /// Closest-point query points.
+    pub points: usize,
+}
+
+impl WorkloadSize {
+    /// The full comparison: 640 × 480 from 3 viewpoints, 300k random rays, 1M points.
+    pub const FULL: Self = Self {
+        width: 640,
+        height: 480,
+        viewpoints: 3,
+        random_rays: 300_000,
+        points: 1_000_000,
+    };
+    /// A smoke run: 160 × 120 from one viewpoint, 20k random rays, 20k points.
+    pub const QUICK: Self = Self {
+        width: 160,
+        height: 120,
+        viewpoints: 1,
+        random_rays: 20_000,
+        points: 20_000,
+    };
+}
+
+/// Where the cameras look from: directions from the mesh's centre, scaled to frame it.
+pub const VIEWPOINTS: [[f32; 3]; 3] = [[1.0, -0.7, 0.5], [-0.6, -1.0, 0.3], [0.2, 0.9, -0.6]];
+
+/// The rays and points of one scene.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Workload {
+    /// One set of rays per [`RayKind`], in [`RayKind::ALL`]'s order.
+    pub rays: Vec<(RayKind, Vec<BenchRay>)>,
+    /// Closest-point query points.
+    pub points: Vec<Vec3>,
+}
+
+/// The scene's bounding box as (min, max).
+pub fn bounds(tris: &[Triangle3]) -> (Vec3, Vec3) {
+    tris.iter()
+        .flat_map(|t| [t.a, t.b, t.c])
+        .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), p| {
+            (lo.min(p), hi.max(p))
+        })
+}
+
+impl Workload {
+    /// The rays and points for `tris`, of the given size (seeded: the same every time).
+    pub fn generate(tris: &[Triangle3], size: &WorkloadSize) -> Self {
+        let (lo, hi) = bounds(tris);
+        let center = (lo + hi) * 0.5;
+        let radius = ((hi - lo).length() * 0.5).max(f32::MIN_POSITIVE);
+        let tree = AabbTree3::build(tris);
+        let primary = primary_rays(center, radius, size);
+        let hits = surface_hits(&tree, &primary, radius);
+        let light = center + Vec3::new(0.4, 0.8, 1.0).normalize() * (4.0 * radius);
+        let shadow = hits
+            .iter()
+            .filter_map(|&(p, _)| {
+                let to_light = light - p;
+                let dir = to_light.try_normalize()?;
+                Some(BenchRay {
+                    origin: p,
+                    dir,
+                    t_max: to_light.length(),
+                })
+            })
+            .collect();
+        let mut rng = SplitMix64::new(0x0D1F_F05E);
+        let diffuse = hits
+            .iter()
+            .map(|&(p, n)| BenchRay {
+                origin: p,
+                dir: cosine_direction(n, &mut rng),
+                t_max: f32::INFINITY,
+            })
+            .collect();
+        let mut rng = SplitMix64::new(0x0BAD_5EED);
+        let random = (0..size.random_rays)
+            .map(|_| BenchRay {
+                origin: lo + (hi - lo) * random_unit_cube(&mut rng),
+                dir: unit_vector(&mut rng),
+                t_max: f32::INFINITY,
+            })
+            .collect();
+        let mut rng = SplitMix64::new(0x0090_1775);
+        let points = (0..size.points)
+            .map(|_| center + (hi - lo) * 1.5 * (random_unit_cube(&mut rng) - 0.5))
+            .collect();
+        Self {
+            rays: vec![
+                (RayKind::Primary, primary),
+                (RayKind::Shadow, shadow),
+                (RayKind::Diffuse, diffuse),
+                (RayKind::Random, random),
+            ],
+            points,
+        }
+    }
+
+    /// The rays of one kind.
+    pub fn rays_of(&self, kind: RayKind) -> &[BenchRay] {
+        self.rays
+            .iter()
+            .find(|(k, _)| *k == kind)
+            .map_or(&[], |(_, rays)| rays.as_slice())
+    }
+}
+
+/// The camera rays of every viewpoint, each camera 2 bounding radii from the centre (its
+/// vertical half-angle of about 24° frames the mesh, which is smaller than its bounding
+/// sphere).
+fn primary_rays(center: Vec3, radius: f32, size: &WorkloadSize) -> Vec<BenchRay> {
+    VIEWPOINTS
+        .iter()
+        .take(size.viewpoints)
+        .flat_map(|d| {
+            let eye = center + Vec3::from_array(*d).normalize() * (2.0 * radius);
+            camera_rays(eye, center, size.width, size.height)
+        })
+        .map(|ray| BenchRay {
+            origin: ray.origin(),
+            dir: ray.dir().normalize(),
+            t_max: f32::INFINITY,
+        })
+        .collect()
+}
+
+/// The primary hits: each a point just off the surface on the camera's side, and the unit
+/// normal facing the camera.
+fn surface_hits(tree: &AabbTree3, rays: &[BenchRay], radius: f32) -> Vec<(Vec3, Vec3)> {
+    let offset = 1e-3 * radius;
+    rays.iter()
+        .filter_map(|r| {
+            let ray = Ray3::new(r.origin, r.dir).ok()?;
+            let hit = tree.ray_first_hit(&ray, r.t_max)?;
+            let normal = tree.primitives()[hit.prim].unit_normal()?;
+            let facing = if normal.dot(r.dir) < 0.0 {
+                normal
+            } else {
+                -normal
+            };
+            Some((ray.at(hit.t) + facing * offset, facing))
+        })
+        .collect()
+}
+
+/// A point uniform in the unit cube `[0, 1)³`.
+fn random_unit_cube(rng: &mut SplitMix64) -> Vec3 {
+    Vec3::new(rng.next_f32(), rng.next_f32(), rng.next_f32())
+}
+
+/// A direction uniform on the unit sphere (Archimedes: `z` uniform in `[-1, 1]`).
+fn unit_vector(rng: &mut SplitMix64) -> Vec3 {
+    let z = 1.0 - 2.0 * rng.next_f32();
+    let phi = std::f32::consts::TAU * rng.next_f32();
+    let r = (1.0 - z * z).max(0.0).sqrt();
+    Vec3::new(r * phi.cos(), r * phi.sin(), z)
+}
+
+/// A cosine-weighted direction about the unit normal `n` (Malley's method: a uniform point
+/// on the disk lifted to the hemisphere), in the orthonormal basis of Duff et al., "Building an
+/// Orthonormal Basis, Revisited", JCGT 6(1), 2017.
+fn cosine_direction(n: Vec3, rng: &mut SplitMix64) -> Vec3 {
+    let sign = 1.0f32.copysign(n.z);
+    let a = -1.0 / (sign + n.z);
+    let b = n.x * n.y * a;
+    let t = Vec3::new(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x);
+    let s = Vec3::new(b, sign + n.y * n.y * a, -n.y);
+    let u = rng.next_f32();
+    let phi = std::f32::consts::TAU * rng.next_f32();
+    let r = u.sqrt();
+    (t * (r * phi.cos()) + s * (r * phi.sin()) + n * (1.0 - u).max(0.0).sqrt()).normalize()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn displaced_sphere_has_about_the_asked_size_and_no_degenerate_triangle() {
+        let tris = displaced_sphere(20_000, 1);
+        assert!((19_000..=20_500).contains(&tris.len()), "{}", tris.len());
+        assert!(tris.iter().all(|t| !t.is_degenerate()));
+        // Lumps of at most 8 · 0.03 on the unit sphere.
+        let (lo, hi) = bounds(&tris);
+        assert!(lo.min_element() > -1.25 && hi.max_element() < 1.25);
+    }
+
+    #[test]
+    fn rays_have_unit_directions_and_secondary_rays_start_at_hits() {
+        let tris = torus_with(2_000);
+        let size = WorkloadSize {
+            width: 40,
+            height: 30,
+            viewpoints: 2,
+            random_rays: 500,
+            points: 100,
+        };
+        let work = Workload::generate(&tris, &size);
+        assert_eq!(work.rays_of(RayKind::Primary).len(), 2 * 40 * 30);
+        assert_eq!(work.rays_of(RayKind::Random).len(), 500);
+        assert_eq!(work.points.len(), 100);
+        for (_, rays) in &work.rays {
+            assert!(rays.iter().all(|r| (r.dir.length() - 1.0).abs() < 1e-5));
+        }
+        // The torus fills much of the view: many primary rays hit, each a shadow and a
+        // diffuse ray; every one starts within a small distance of some triangle.
+        let diffuse = work.rays_of(RayKind::Diffuse);
+        assert!(diffuse.len() > 200, "{}", diffuse.len());
+        assert_eq!(work.rays_of(RayKind::Shadow).len(), diffuse.len());
+        let brute = bvhlab::BruteForce::build(&tris);
+        for ray in diffuse.iter().step_by(17) {
+            let near = brute.closest_point(ray.origin).map(|n| n.distance);
+            assert!(near.is_some_and(|d| d < 1e-2), "{near:?}");
+        }
+    }
+
+    #[test]
+    fn cosine_directions_leave_the_surface_and_average_to_two_thirds() {
+        let mut rng = SplitMix64::new(3);
+        let n = Vec3::new(0.3, -0.5, 0.8).normalize();
+        let cosines: Vec<f32> = (0..20_000)
+            .map(|_| cosine_direction(n, &mut rng).dot(n))
+            .collect();
+        assert!(cosines.iter().all(|&c| c >= -1e-6));
+        // E[cos θ] under the cosine density is 2/3.
+        let mean = cosines.iter().sum::<f32>() / cosines.len() as f32;
+        assert!((mean - 2.0 / 3.0).abs() < 0.01, "{mean}");
+    }
+
+    #[test]
+    fn the_workload_is_the_same_every_time() {
+        let tris = torus_with(1_000);
+        let size = WorkloadSize {
+            width: 8,
+            height: 6,
+            viewpoints: 1,
+            random_rays: 10,
+            points: 10,
+        };
+        assert_eq!(
+            Workload::generate(&tris, &size),
+            Workload::generate(&tris, &size)
+        );
+    }
+}
