@@ -1,4 +1,5 @@
-//! The WebAssembly half of the peer comparison (issue 7): bvhlab's AABB tree and the
+//! The WebAssembly half of the peer comparison (issue 7): bvhlab's AABB tree (its 4-wide
+//! copy, [`Bvh4`], which answers the queries, as natively) and the
 //! comparison's workload ([`bvhlab_bench::workload`]) compiled for `wasm32-unknown-unknown`
 //! (with `-C target-feature=+simd128`), for `js/run.mjs` to time in node beside
 //! three-mesh-bvh on exactly the same triangles, rays and points.
@@ -8,7 +9,8 @@
 //! query (`-1` for no hit). Timing is done by the caller around [`WasmBench::build`],
 //! [`WasmBench::first_hits`] and [`WasmBench::closest`].
 
-use bvhlab::{AabbTree3, Ray3, SpatialIndex, Triangle3};
+use bvhlab::structure::bvh::Bvh4;
+use bvhlab::{AabbTree3, Ray3, Triangle3};
 use bvhlab_bench::workload::{RayKind, Workload, WorkloadSize, triangles_from_obj};
 use wasm_bindgen::prelude::*;
 
@@ -17,7 +19,7 @@ use wasm_bindgen::prelude::*;
 pub struct WasmBench {
     tris: Vec<Triangle3>,
     work: Workload,
-    tree: Option<AabbTree3>,
+    tree: Option<Bvh4<Triangle3>>,
 }
 
 #[wasm_bindgen]
@@ -83,9 +85,10 @@ impl WasmBench {
             .collect()
     }
 
-    /// Builds bvhlab's AABB tree (binned SAH), replacing the previous one.
+    /// Builds bvhlab's AABB tree (binned SAH) and collapses it into the 4-wide tree that
+    /// answers, replacing the previous one.
     pub fn build(&mut self) {
-        self.tree = Some(AabbTree3::build(&self.tris));
+        self.tree = Some(Bvh4::from_bvh(&AabbTree3::build(&self.tris)));
     }
 
     /// The first-hit distance of every ray of kind `kind`, `-1` for a miss (or before

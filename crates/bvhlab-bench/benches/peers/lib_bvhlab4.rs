@@ -1,0 +1,70 @@
+//! bvhlab's fastest path: the binned-SAH AABB tree collapsed into its 4-wide copy
+//! ([`Bvh4`]), which answers first hits and closest points bit for bit as the binary tree
+//! does (the core's tests check that). The build time is the binary build plus the collapse;
+//! the binary tree is dropped afterwards, as a program that only asks queries would.
+
+use bvhlab::glam::Vec3;
+use bvhlab::structure::bvh::Bvh4;
+use bvhlab::{AabbTree3, Ray3, SpatialIndex, Triangle3};
+use bvhlab_bench::workload::BenchRay;
+
+use crate::library::{Library, RayCost, TreeFacts};
+
+/// The 4-wide tree, and the binary tree's SAH cost (the wide copy has the same boxes).
+pub struct Wide {
+    tree: Bvh4<Triangle3>,
+    sah: Option<f64>,
+}
+
+/// bvhlab's `Bvh4`.
+pub struct BvhlabWide;
+
+impl Library for BvhlabWide {
+    const NAME: &'static str = "bvhlab 4-wide AABB tree (binned SAH, collapsed)";
+    const HAS_CLOSEST: bool = true;
+    type Input = Vec<Triangle3>;
+    type Tree<'a> = Wide;
+    type Ray = (Ray3, f32);
+
+    fn input(tris: &[Triangle3]) -> Self::Input {
+        tris.to_vec()
+    }
+
+    fn build(input: &Self::Input) -> Wide {
+        let binary = AabbTree3::build(input);
+        Wide {
+            tree: Bvh4::from_bvh(&binary),
+            sah: binary.stats().sah_cost.map(f64::from),
+        }
+    }
+
+    fn ray(ray: &BenchRay) -> Self::Ray {
+        // The workload's rays have finite origins and unit directions.
+        let r = Ray3::new(ray.origin, ray.dir).unwrap_or_else(|e| panic!("bad ray {ray:?}: {e}"));
+        (r, ray.t_max)
+    }
+
+    fn first_hit(tree: &Wide, (ray, t_max): &Self::Ray) -> Option<f32> {
+        tree.tree.ray_first_hit(ray, *t_max).map(|hit| hit.t)
+    }
+
+    fn first_hit_cost(_tree: &Wide, _ray: &Self::Ray) -> RayCost {
+        // The wide walk counts nothing; the binary tree's row has the counts.
+        RayCost {
+            nodes: None,
+            prims: None,
+        }
+    }
+
+    fn closest_distance(tree: &Wide, point: Vec3) -> Option<f32> {
+        tree.tree.closest_point(point).map(|n| n.distance)
+    }
+
+    fn facts(tree: &Wide) -> TreeFacts {
+        TreeFacts {
+            nodes: Some(tree.tree.len()),
+            sah: tree.sah,
+            bytes: Some(tree.tree.memory_bytes()),
+        }
+    }
+}
