@@ -310,31 +310,31 @@ fn commands_are_applied_in_order_and_answered_with_the_report() {
     let mut h = harness(LabApp::with_preset(Preset::KdHandful));
     let mut scripting = Scripting::new(false);
     let mut sent = Sent::new();
-    let id = |n: u32| serde_json::json!(n);
+    let id = |n: u32| n.to_string();
     scripting.receive(
         1,
-        id(1),
+        &id(1),
         r#"{"type": "set-structure", "structure": "kd-tree"}"#,
     );
     scripting.receive(
         1,
-        id(2),
+        &id(2),
         r#"{"type": "set-ray", "origin": [0, 4.5], "direction": [1, 0]}"#,
     );
-    scripting.receive(1, id(3), r#"{"type": "go-to-step", "step": 0}"#);
-    scripting.receive(1, id(4), r#"{"type": "step", "by": 2}"#);
+    scripting.receive(1, &id(3), r#"{"type": "go-to-step", "step": 0}"#);
+    scripting.receive(1, &id(4), r#"{"type": "step", "by": 2}"#);
     scripting.receive(
         2,
-        id(5),
+        &id(5),
         r#"{"type": "set-structure", "structure": "octopus"}"#,
     );
     scripting.receive(
         2,
-        id(6),
+        &id(6),
         r#"{"type": "set-ray", "origin": [0, 0], "direction": [0, 0]}"#,
     );
-    scripting.receive(2, id(7), r#"{"type": "panic-for-test"}"#);
-    scripting.receive(2, id(8), "not json");
+    scripting.receive(2, &id(7), r#"{"type": "panic-for-test"}"#);
+    scripting.receive(2, &id(8), "not json");
     replies(&mut scripting, &mut h, &mut sent);
     assert_eq!(sent.len(), 8, "{sent:#?}");
     let by_id = |n: u64| {
@@ -380,23 +380,15 @@ fn a_reply_waits_for_a_3d_build_and_export_scene_gives_a_scene_that_loads() {
     let mut h = harness(LabApp::default());
     let mut scripting = Scripting::new(false);
     let mut sent = Sent::new();
+    scripting.receive(0, r#""a""#, r#"{"type": "load-mesh", "mesh": "sphere"}"#);
     scripting.receive(
         0,
-        serde_json::json!("a"),
-        r#"{"type": "load-mesh", "mesh": "sphere"}"#,
-    );
-    scripting.receive(
-        0,
-        serde_json::json!("b"),
+        r#""b""#,
         r#"{"type": "set-ray", "origin": [0, 0, 5], "direction": [0, 0, -1]}"#,
     );
-    scripting.receive(
-        0,
-        serde_json::json!("c0"),
-        r#"{"type": "go-to-step", "step": 0}"#,
-    );
-    scripting.receive(0, serde_json::json!("c"), r#"{"type": "step", "by": 4}"#);
-    scripting.receive(0, serde_json::json!("d"), r#"{"type": "export-scene"}"#);
+    scripting.receive(0, r#""c0""#, r#"{"type": "go-to-step", "step": 0}"#);
+    scripting.receive(0, r#""c""#, r#"{"type": "step", "by": 4}"#);
+    scripting.receive(0, r#""d""#, r#"{"type": "export-scene"}"#);
     replies(&mut scripting, &mut h, &mut sent);
     assert_eq!(sent.len(), 5);
     for (_, reply) in &sent {
@@ -411,10 +403,34 @@ fn a_reply_waits_for_a_3d_build_and_export_scene_gives_a_scene_that_loads() {
     let mut scripting = Scripting::new(false);
     let mut sent = Sent::new();
     let command = serde_json::json!({"type": "load-scene", "scene": scene}).to_string();
-    scripting.receive(0, serde_json::json!(1), &command);
+    scripting.receive(0, "1", &command);
     replies(&mut scripting, &mut other, &mut sent);
     assert_eq!(sent[0].1["ok"], true, "{}", sent[0].1);
     until_idle(&mut other);
     assert_eq!(other.state().lab3d.ray, h.state().lab3d.ray);
     assert_eq!(other.state().dimension, Dimension::Three);
+}
+
+#[test]
+fn ids_come_back_exactly_as_the_page_wrote_them() {
+    let mut h = harness(LabApp::default());
+    let mut scripting = Scripting::new(false);
+    // A Math.random() id (its digits need not survive a trip through an f64 and back, so it
+    // must be echoed verbatim), an object, and an id that is not JSON (echoed as null).
+    let ids = ["0.40478935219183896", r#"{"page": [1, "a"]}"#, "not json"];
+    for (n, id) in (0u32..).zip(ids) {
+        scripting.receive(n, id, r#"{"type": "report"}"#);
+    }
+    scripting.before_frame(h.state_mut(), 0.0);
+    h.step();
+    let out = scripting.after_frame(h.state(), 0.0);
+    assert_eq!(out.len(), 3);
+    for ((_, json), expected) in out.iter().zip([
+        r#""id":0.40478935219183896,"#,
+        r#""id":{"page": [1, "a"]},"#,
+        r#""id":null,"#,
+    ]) {
+        assert!(json.contains(expected), "{expected} in {json}");
+        serde_json::from_str::<serde_json::Value>(json).expect("the reply is JSON");
+    }
 }

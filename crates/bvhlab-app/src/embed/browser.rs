@@ -75,8 +75,7 @@ pub fn listen(inbox: Inbox, origins: Origins, ctx: egui::Context) {
                 .ok()
                 .and_then(|id| js_sys::JSON::stringify(&id).ok())
                 .and_then(|text| text.as_string())
-                .and_then(|text| serde_json::from_str(&text).ok())
-                .unwrap_or(serde_json::Value::Null);
+                .unwrap_or_else(|| "null".to_owned());
             let command = js_sys::Reflect::get(&data, &"command".into())
                 .ok()
                 .and_then(|c| js_sys::JSON::stringify(&c).ok())
@@ -84,7 +83,7 @@ pub fn listen(inbox: Inbox, origins: Origins, ctx: egui::Context) {
                 .unwrap_or_default();
             inbox
                 .borrow_mut()
-                .receive(ReplyTo { source, origin }, id, &command);
+                .receive(ReplyTo { source, origin }, &id, &command);
             ctx.request_repaint();
         },
     );

@@ -25,6 +25,9 @@ pub use params::{PARAMETERS, StartParams};
 
 use crate::app::{Dimension, LabApp};
 
+/// The longest command id echoed, in characters of JSON.
+const MAX_ID_CHARS: usize = 256;
+
 /// How long a reply may wait for a build to finish, in seconds, before it is sent as an
 /// error ("still building").
 pub const REPLY_TIMEOUT: f64 = 60.0;
@@ -97,14 +100,16 @@ fn sentences(parts: &[String]) -> String {
 /// web, anything in tests).
 struct Request<T> {
     reply_to: T,
-    id: serde_json::Value,
+    /// The id as the page wrote it (JSON text), echoed verbatim: read into a number and
+    /// written back, an id like `Math.random()` may not come back to the same digits.
+    id: String,
     command: Result<Command, String>,
 }
 
 /// A command applied (or refused), waiting for the lab to be ready before its reply goes.
 struct Waiting<T> {
     reply_to: T,
-    id: serde_json::Value,
+    id: String,
     outcome: Result<Option<String>, String>,
     since: f64,
 }
@@ -130,11 +135,18 @@ impl<T> Scripting<T> {
         }
     }
 
-    /// Queues a command's JSON text, with its `id` (echoed in the reply).
-    pub fn receive(&mut self, reply_to: T, id: serde_json::Value, json: &str) {
+    /// Queues a command's JSON text, with its `id` as JSON text (echoed verbatim in the
+    /// reply; anything that is not a short JSON value is echoed as `null`).
+    pub fn receive(&mut self, reply_to: T, id: &str, json: &str) {
+        let valid =
+            id.len() <= MAX_ID_CHARS && serde_json::from_str::<serde::de::IgnoredAny>(id).is_ok();
         self.queue.push_back(Request {
             reply_to,
-            id,
+            id: if valid {
+                id.to_owned()
+            } else {
+                "null".to_owned()
+            },
             command: Command::parse(json),
         });
     }
@@ -206,7 +218,7 @@ fn busy(app: &LabApp) -> bool {
 
 /// A reply's JSON text. The report is written as the page's `data-report` has it (numbers as
 /// the shortest decimals of their `f32`s), so both read the same.
-fn reply(id: &serde_json::Value, outcome: Result<Option<String>, String>, app: &LabApp) -> String {
+fn reply(id: &str, outcome: Result<Option<String>, String>, app: &LabApp) -> String {
     match outcome {
         Ok(extra) => {
             let scene = extra.map_or_else(String::new, |scene| format!(r#","scene":{scene}"#));
@@ -215,12 +227,9 @@ fn reply(id: &serde_json::Value, outcome: Result<Option<String>, String>, app: &
                 app.report.json()
             )
         }
-        Err(error) => serde_json::json!({
-            "bvhlab": "reply",
-            "id": id,
-            "ok": false,
-            "error": error,
-        })
-        .to_string(),
+        Err(error) => format!(
+            r#"{{"bvhlab":"reply","id":{id},"ok":false,"error":{}}}"#,
+            serde_json::Value::String(error)
+        ),
     }
 }
