@@ -98,7 +98,7 @@ function runScene(name, file) {
 	}
 	const floor = 1e-6 * 0.5 * Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
 
-	const ours = { library: 'bvhlab AABB tree (wasm32 + simd128)', is_bvhlab: true, mrays: {}, disagreements: {} };
+	const ours = { library: 'bvhlab 4-wide AABB tree (wasm32 + simd128)', is_bvhlab: true, mrays: {}, disagreements: {} };
 	const three = { library: 'three-mesh-bvh 0.9.17 (SAH)', is_bvhlab: false, mrays: {}, disagreements: {} };
 
 	const [ourBuild] = median(() => bench.build());
