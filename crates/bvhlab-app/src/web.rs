@@ -156,47 +156,47 @@ fn start_state() -> StartState {
 /// Removes a share link's fragment from the address (keeping path and query), so that a
 /// reload shows the student's latest state, kept in `localStorage`, instead of the link again.
 pub fn forget_link() {
+    let search = web_sys::window()
+        .and_then(|w| w.location().search().ok())
+        .unwrap_or_default();
+    replace_address(&search, "the share link");
+}
+
+/// Removes `fresh=1` from the address once the lab has started from the page's own scene, so
+/// that a later reload restores what the student does from now on.
+fn forget_fresh() {
+    let search = web_sys::window()
+        .and_then(|w| w.location().search().ok())
+        .unwrap_or_default();
+    let kept: Vec<&str> = search
+        .trim_start_matches('?')
+        .split('&')
+        .filter(|pair| !pair.is_empty() && !pair.starts_with("fresh="))
+        .collect();
+    let search = if kept.is_empty() {
+        String::new()
+    } else {
+        format!("?{}", kept.join("&"))
+    };
+    replace_address(&search, "fresh=1");
+}
+
+/// Replaces the address, without reloading, by the page's path and `search` (no fragment);
+/// says in the log when the browser refuses, naming `what` was to be removed.
+fn replace_address(search: &str, what: &str) {
     let Some(window) = web_sys::window() else {
         return;
     };
-    let location = window.location();
     let address = format!(
-        "{}{}",
-        location.pathname().unwrap_or_default(),
-        location.search().unwrap_or_default()
+        "{}{search}",
+        window.location().pathname().unwrap_or_default()
     );
     if let Ok(history) = window.history()
         && history
             .replace_state_with_url(&JsValue::NULL, "", Some(&address))
             .is_err()
     {
-        log::warn!("could not remove the share link from the address");
-    }
-}
-
-/// Removes `fresh=1` from the address once the lab has started from the page's own scene, so
-/// that a later reload restores what the student does from now on.
-fn forget_fresh() {
-    let Some(window) = web_sys::window() else {
-        return;
-    };
-    let location = window.location();
-    let search = location.search().unwrap_or_default();
-    let kept: Vec<&str> = search
-        .trim_start_matches('?')
-        .split('&')
-        .filter(|pair| !pair.is_empty() && !pair.starts_with("fresh="))
-        .collect();
-    let rest = if kept.is_empty() {
-        String::new()
-    } else {
-        format!("?{}", kept.join("&"))
-    };
-    let address = format!("{}{rest}", location.pathname().unwrap_or_default());
-    if let Ok(history) = window.history() {
-        history
-            .replace_state_with_url(&JsValue::NULL, "", Some(&address))
-            .ok();
+        log::warn!("could not remove {what} from the address");
     }
 }
 

@@ -8,7 +8,7 @@ use serde::Deserialize;
 
 use crate::app::{Dimension, LabApp, RayHandles};
 use crate::lab3d::mesh::MeshSource;
-use crate::persist::{MAX_COORD, MAX_FILE_BYTES, SavedState, StructureName, TaskName};
+use crate::persist::{MAX_FILE_BYTES, SavedState, StructureName, TaskName};
 use crate::presets::Preset;
 
 /// A command, as the page sends it: `{"type": "set-ray", "origin": [0, 0], "direction": [1, 0]}`.
@@ -258,14 +258,6 @@ fn vec3(what: &str, n: &[f64]) -> Result<Vec3, String> {
 /// Finite numbers within the lab's range, as `f32`.
 fn checked(what: &str, n: &[f64]) -> Result<Vec<f32>, String> {
     n.iter()
-        .map(|&x| {
-            if x.is_finite() && x.abs() <= f64::from(MAX_COORD) {
-                Ok(x as f32)
-            } else {
-                Err(format!(
-                    "the {what} has {x}; numbers must be finite and within ±{MAX_COORD:e}"
-                ))
-            }
-        })
+        .map(|&x| super::coordinate(&format!("the {what}"), x))
         .collect()
 }

@@ -78,19 +78,26 @@ pub fn start(fragment: Option<&str>, params: &StartParams, saved: Option<&str>) 
     }
 }
 
+/// A coordinate from a page (address or command), or why the lab cannot take it: it must be
+/// finite and within ±[`MAX_COORD`](crate::persist::MAX_COORD), as in scene files.
+fn coordinate(what: &str, x: f64) -> Result<f32, String> {
+    let max = crate::persist::MAX_COORD;
+    if x.is_finite() && x.abs() <= f64::from(max) {
+        Ok(x as f32)
+    } else {
+        Err(format!(
+            "{what} has {x}; numbers must be finite and within ±{max:e}"
+        ))
+    }
+}
+
 /// Sentences from message parts (each capitalized and ended with a full stop).
 fn sentences(parts: &[String]) -> String {
     parts
         .iter()
         .map(|p| {
-            let mut chars = p.chars();
-            let first: String = chars
-                .next()
-                .map(|c| c.to_uppercase().collect())
-                .unwrap_or_default();
-            let rest: String = chars.collect();
-            let end = if rest.ends_with('.') { "" } else { "." };
-            format!("{first}{rest}{end}")
+            let end = if p.ends_with('.') { "" } else { "." };
+            format!("{}{end}", crate::persist::capitalized(p))
         })
         .collect::<Vec<_>>()
         .join(" ")

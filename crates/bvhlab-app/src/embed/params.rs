@@ -9,7 +9,7 @@ use bvhlab::glam::{Vec2, Vec3};
 use crate::app::{Dimension, LabApp, RayHandles};
 use crate::lab3d::Placement3d;
 use crate::lab3d::mesh::MeshSource;
-use crate::persist::{MAX_COORD, STORAGE_KEY, StructureName, TaskName};
+use crate::persist::{STORAGE_KEY, StructureName, TaskName};
 use crate::presets::Preset;
 
 /// The parameters the lab reads, with what each does (the README's table is this list).
@@ -355,19 +355,13 @@ fn numbers(what: &str, value: &str, counts: &[usize]) -> Result<Vec<f32>, String
     let list = value
         .split(',')
         .map(|text| {
-            let x: f32 = text.trim().parse().map_err(|_| {
+            let x: f64 = text.trim().parse().map_err(|_| {
                 format!(
                     "the address's {what} has \"{}\", which is not a number",
                     short(text)
                 )
             })?;
-            if x.is_finite() && x.abs() <= MAX_COORD {
-                Ok(x)
-            } else {
-                Err(format!(
-                    "the address's {what} has {x}; numbers must be finite and within ±{MAX_COORD:e}"
-                ))
-            }
+            super::coordinate(&format!("the address's {what}"), x)
         })
         .collect::<Result<Vec<f32>, String>>()?;
     if counts.contains(&list.len()) {
@@ -437,10 +431,7 @@ fn stored_name<T: serde::Serialize>(name: &T) -> String {
     }
 }
 
-/// `text` cut for a message.
-fn short(text: &str) -> String {
-    match text.char_indices().nth(40) {
-        Some((cut, _)) => format!("{}…", &text[..cut]),
-        None => text.to_owned(),
-    }
+/// `text` cut for a message (the scene format's own cut: 40 characters and an ellipsis).
+fn short(text: &str) -> std::borrow::Cow<'_, str> {
+    crate::persist::shorten(text, 40)
 }

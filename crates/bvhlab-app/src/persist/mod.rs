@@ -26,6 +26,7 @@ mod actions;
 mod file;
 mod link;
 mod names;
+pub(crate) use names::shorten;
 mod restore;
 mod state;
 mod state3d;
@@ -125,7 +126,7 @@ pub fn startup(
             }
             None => Err(format!(
                 "The address asks for the preset \"{}\", which the lab does not have",
-                names::shorten(slug, 40)
+                shorten(slug, 40)
             )),
         }
     } else if let Some(saved) = saved {
@@ -145,7 +146,7 @@ pub fn startup(
 }
 
 /// `text` with its first letter capitalized (messages are built from lower-case parts).
-fn capitalized(text: &str) -> String {
+pub(crate) fn capitalized(text: &str) -> String {
     let mut chars = text.chars();
     chars.next().map_or_else(String::new, |first| {
         first.to_uppercase().chain(chars).collect()

@@ -185,7 +185,7 @@ pub type StoredPoint = [Coord; 2];
 
 /// `text` cut to at most `max` characters (with an ellipsis), so that a hostile file cannot
 /// put a megabyte of text into the status line.
-pub(super) fn shorten(text: &str, max: usize) -> Cow<'_, str> {
+pub(crate) fn shorten(text: &str, max: usize) -> Cow<'_, str> {
     match text.char_indices().nth(max) {
         Some((cut, _)) => Cow::Owned(format!("{}…", &text[..cut])),
         None => Cow::Borrowed(text),
