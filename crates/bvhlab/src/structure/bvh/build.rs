@@ -22,7 +22,11 @@
 //! of the recursion: the stack pops ranges in the recursion's order, and every stage reads
 //! and writes the primitives in the order the recursion did.
 
+mod fast;
+mod fast_bins;
 mod node_stages;
+
+pub(super) use fast::build_sah_boxes;
 
 use super::build_job::{BuildPhase, BuildProgress};
 use super::build_log::SplitRecord;

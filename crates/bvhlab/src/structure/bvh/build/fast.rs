@@ -1,0 +1,259 @@
+//! The binned-SAH build of a box tree in one go, for [`Bvh::with_options`]: the tree the
+//! resumable [`Builder`](super::Builder) makes, bit for bit, at about half its cost.
+//!
+//! The resumable builder keeps each node's work in a [`Stage`](super::Stage) that can stop
+//! anywhere: a node reads its primitives three times (merge their boxes, bin them, partition
+//! them) and moves its stage state (a few hundred bytes) at every step. A build that runs to
+//! the end needs neither: this one is a plain loop over a stack of ranges, and each
+//! partition merges the boxes and centres of both sides as it moves them, so a child starts
+//! with its bounds known and reads its primitives twice (bin, partition). Wald's binned
+//! builder does the same ("On fast Construction of SAH-based Bounding Volume Hierarchies",
+//! 2007, §4.1: the children's bounds fall out of the partition pass).
+//!
+//! Only box trees qualify: a sphere or OBB node is fitted to the vertices below it, which the
+//! resumable builder gathers per node anyway. The decisions are the same calls in the same
+//! order (the same [`SahBinning`] over the same primitives in the same order, the same
+//! partition, the same object median), and a box's union is the same whatever the order of
+//! its merges (minimum and maximum of finite numbers; a `-0.0` against a `0.0` is the one
+//! difference, and [`NodeVolume::fit`] grows every box by at least `f32::MIN_POSITIVE`,
+//! which takes the zero's sign away), so the nodes, their order and the leaf order equal
+//! the resumable builder's. The tests compare the two on random scenes and the shared
+//! meshes.
+
+use super::BuildPrim;
+use super::fast_bins::{AxisBins, Binner, Cheapest, LaneBox, lanes};
+use crate::structure::bvh::split_median::object_median;
+use crate::structure::bvh::tree::{BvhNode, is_indexable};
+use crate::structure::bvh::volume::NodeVolume;
+use crate::structure::bvh::{Bvh, BvhOptions};
+use crate::{Primitive, Vector};
+
+/// What the build knows of a primitive, in lanes: its box, its centre, its input index.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Item {
+    pub bounds: LaneBox,
+    pub centroid: [f32; 3],
+    pub index: u32,
+}
+
+impl Item {
+    fn of<V: Vector>(prim: &BuildPrim<V>) -> Self {
+        let c = lanes(prim.centroid);
+        Self {
+            bounds: LaneBox::of_aabb(&prim.bounds),
+            centroid: [c.x, c.y, c.z],
+            index: prim.index,
+        }
+    }
+
+    fn to_build_prim<V: Vector>(self) -> BuildPrim<V> {
+        let bounds = self.bounds.to_aabb();
+        let mut centroid = V::ZERO;
+        for (i, &c) in self.centroid.iter().enumerate().take(V::DIM) {
+            centroid.set_coord(i, c);
+        }
+        BuildPrim {
+            bounds,
+            centroid,
+            index: self.index,
+        }
+    }
+}
+
+/// A range of primitives waiting for its node, with the boxes of their bounds and centres.
+#[derive(Clone, Copy, Debug)]
+struct Job {
+    start: usize,
+    end: usize,
+    /// Its parent, when it is a second child (whose index the parent stores).
+    second_of: Option<u32>,
+    depth: usize,
+    boxes: Boxes,
+}
+
+/// The bounds and centres of a run of primitives.
+#[derive(Clone, Copy, Debug)]
+struct Boxes {
+    bounds: LaneBox,
+    centroids: LaneBox,
+}
+
+impl Boxes {
+    const EMPTY: Self = Self {
+        bounds: LaneBox::EMPTY,
+        centroids: LaneBox::EMPTY,
+    };
+
+    #[inline]
+    fn add(&mut self, item: &Item) {
+        self.bounds = self.bounds.merge(&item.bounds);
+        let [x, y, z] = item.centroid;
+        self.centroids = self.centroids.grown(glam::Vec4::new(x, y, z, 0.0));
+    }
+
+    fn of(items: &[Item]) -> Self {
+        let mut boxes = Self::EMPTY;
+        for item in items {
+            boxes.add(item);
+        }
+        boxes
+    }
+}
+
+/// Builds the binned-SAH tree with box nodes over `prims`: what
+/// [`Builder::run`](super::Builder::run) makes with the same options, without its events,
+/// its log and its stages.
+pub(in crate::structure::bvh) fn build_sah_boxes<B, P>(
+    prims: &[P],
+    options: &BvhOptions,
+) -> Bvh<B, P>
+where
+    B: NodeVolume<Point = P::Point>,
+    P: Primitive,
+{
+    debug_assert!(
+        !B::NEEDS_VERTICES,
+        "only volumes fitted to the bounds alone"
+    );
+    let mut items = Vec::with_capacity(prims.len());
+    for (index, prim) in prims.iter().enumerate() {
+        if is_indexable(prim) {
+            items.push(Item::of(&BuildPrim {
+                bounds: prim.bounds(),
+                centroid: prim.centroid(),
+                index: index as u32,
+            }));
+        }
+    }
+    let n = items.len();
+    // A binary tree with at least one primitive per leaf has fewer than 2n nodes.
+    let mut nodes = Vec::with_capacity(n.saturating_mul(2).min(1 << 24));
+    if n > 0 {
+        let mut jobs = vec![Job {
+            start: 0,
+            end: n,
+            second_of: None,
+            depth: 0,
+            boxes: Boxes::of(&items),
+        }];
+        let mut binner = Binner::new(options.bin_count());
+        while let Some(job) = jobs.pop() {
+            make_node(
+                &job,
+                &mut items,
+                &mut nodes,
+                &mut jobs,
+                &mut binner,
+                options,
+            );
+        }
+    }
+    nodes.shrink_to_fit();
+    let leaf_prims = items
+        .iter()
+        .map(|item| prims[item.index as usize])
+        .collect();
+    let leaf_ids = items.iter().map(|item| item.index).collect();
+    Bvh {
+        prims: prims.to_vec(),
+        nodes,
+        leaf_prims,
+        leaf_ids,
+        options: *options,
+    }
+}
+
+/// Makes the job's node (a leaf until split) and queues its children, if it splits.
+fn make_node<B: NodeVolume>(
+    job: &Job,
+    items: &mut [Item],
+    nodes: &mut Vec<BvhNode<B>>,
+    jobs: &mut Vec<Job>,
+    binner: &mut Binner,
+    options: &BvhOptions,
+) {
+    let id = nodes.len() as u32;
+    let n = job.end - job.start;
+    nodes.push(BvhNode {
+        volume: B::fit(&job.boxes.bounds.to_aabb(), &[], options),
+        start: job.start as u32,
+        count: n as u32,
+    });
+    if let Some(parent) = job.second_of {
+        let parent = &mut nodes[parent as usize];
+        parent.start = id;
+        parent.count = 0;
+    }
+    if n <= 1 || job.depth >= options.depth_limit() {
+        return;
+    }
+    let small = n <= options.leaf_size();
+    let items = &mut items[job.start..job.end];
+    let cheapest = binner.cheapest::<B::Point>(&job.boxes.bounds, &job.boxes.centroids, items);
+    let (split, left, right) = match cheapest {
+        // Splitting does not pay, or cannot be costed: a leaf, if it is small enough.
+        Some(cheapest) if small && cheapest.cost >= n as f32 => return,
+        None if small => return,
+        Some(cheapest) => {
+            let (count, left, right) = partition(items, &cheapest);
+            debug_assert_eq!(count, cheapest.left, "binning and partition disagree");
+            (count, left, right)
+        }
+        None => {
+            let left = median::<B::Point>(items, &job.boxes.centroids);
+            (left, Boxes::of(&items[..left]), Boxes::of(&items[left..]))
+        }
+    };
+    let mid = job.start + split;
+    // The first child on top: it is made next, as the recursion would.
+    for (start, end, boxes, second_of) in [
+        (mid, job.end, right, Some(id)),
+        (job.start, mid, left, None),
+    ] {
+        jobs.push(Job {
+            start,
+            end,
+            second_of,
+            depth: job.depth + 1,
+            boxes,
+        });
+    }
+}
+
+/// The resumable builder's object median (rare: only where the centres coincide on every
+/// axis the SAH could bin), on its own primitive type so that the selection permutes them
+/// exactly as it does there. Returns the size of the first half.
+fn median<V: Vector>(items: &mut [Item], centroids: &LaneBox) -> usize {
+    let mut prims: Vec<BuildPrim<V>> = items.iter().map(|item| item.to_build_prim()).collect();
+    let split = object_median(&mut prims, &centroids.to_aabb());
+    for (item, prim) in items.iter_mut().zip(&prims) {
+        *item = Item::of(prim);
+    }
+    split.left
+}
+
+/// Moves the primitives whose centre's bin is at most the cheapest plane's to the front, in
+/// the resumable builder's order (one pass, each such primitive swapped with the first that
+/// is not), merging each side's boxes on the way. Returns how many went to the front, and
+/// the boxes of both sides.
+///
+/// "The bin is at most `best`" is `((c - lo) * scale) as usize <= best`; the product is
+/// finite and not negative (`lo` is the least centre), so it truncates to at most `best`
+/// exactly when it is below `best + 1`, a small integer that `f32` holds exactly. The
+/// comparison saves the conversion.
+fn partition(items: &mut [Item], cheapest: &Cheapest) -> (usize, Boxes, Boxes) {
+    let AxisBins { axis, lo, scale } = cheapest.bins;
+    let limit = (cheapest.best + 1) as f32;
+    let (mut mid, mut left, mut right) = (0, Boxes::EMPTY, Boxes::EMPTY);
+    for i in 0..items.len() {
+        let item = items[i];
+        if (item.centroid[axis] - lo) * scale < limit {
+            left.add(&item);
+            items.swap(i, mid);
+            mid += 1;
+        } else {
+            right.add(&item);
+        }
+    }
+    (mid, left, right)
+}

@@ -1,0 +1,302 @@
+//! The SAH binning of the one-go build ([`fast`](super::fast)) in four-lane boxes: the
+//! decisions of [`SahBinning`](crate::structure::bvh::split_sah::SahBinning) (Wald 2007;
+//! pbrt-v4 §7.3.2), computed the same way, on boxes whose merge is one vector minimum and
+//! one vector maximum.
+//!
+//! Bit for bit the same choice: the same bins (`((c - lo) * scale) as usize`, clamped), the
+//! same boxes in each (a minimum and a maximum of finite numbers do not depend on the
+//! order), the areas from the same `f32` side lengths summed in `f64` in the same order, the
+//! same sweeps over the occupied bins and the same strict comparisons, axis by axis.
+
+use glam::Vec4;
+
+use crate::Vector;
+use crate::structure::bvh::split_sah::MAX_BINS;
+use crate::volume::Aabb;
+
+/// A box in four lanes (`x`, `y`, `z`, and a lane that stays 0; `z` is 0 in 2D).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct LaneBox {
+    pub min: Vec4,
+    pub max: Vec4,
+}
+
+impl LaneBox {
+    pub const EMPTY: Self = Self {
+        min: Vec4::new(f32::INFINITY, f32::INFINITY, f32::INFINITY, 0.0),
+        max: Vec4::new(f32::NEG_INFINITY, f32::NEG_INFINITY, f32::NEG_INFINITY, 0.0),
+    };
+
+    /// The box around `self` and `other` (their coordinates are never NaN).
+    #[inline]
+    pub fn merge(&self, other: &Self) -> Self {
+        Self {
+            min: self.min.min(other.min),
+            max: self.max.max(other.max),
+        }
+    }
+
+    /// The box around `self` and the point `p`.
+    #[inline]
+    pub fn grown(&self, p: Vec4) -> Self {
+        Self {
+            min: self.min.min(p),
+            max: self.max.max(p),
+        }
+    }
+
+    /// `split_sah`'s `half_area`: half the surface area (3D) or half the perimeter (2D),
+    /// from the `f32` side lengths, in `f64`.
+    #[inline]
+    pub fn half_area<V: Vector>(&self) -> f64 {
+        let s = self.max - self.min;
+        let (x, y, z) = (f64::from(s.x), f64::from(s.y), f64::from(s.z));
+        if V::DIM == 2 {
+            x + y
+        } else {
+            x * y + y * z + z * x
+        }
+    }
+
+    pub fn of_aabb<V: Vector>(b: &Aabb<V>) -> Self {
+        Self {
+            min: lanes(b.min),
+            max: lanes(b.max),
+        }
+    }
+
+    pub fn to_aabb<V: Vector>(self) -> Aabb<V> {
+        Aabb::new(point(self.min), point(self.max))
+    }
+}
+
+/// A point's coordinates in lanes (0 beyond its dimension).
+#[inline]
+pub(super) fn lanes<V: Vector>(p: V) -> Vec4 {
+    let c = |i: usize| if i < V::DIM { p.coord(i) } else { 0.0 };
+    Vec4::new(c(0), c(1), c(2), 0.0)
+}
+
+/// The point of the first `V::DIM` lanes.
+#[inline]
+fn point<V: Vector>(l: Vec4) -> V {
+    let mut p = V::ZERO;
+    for (i, c) in l.to_array().into_iter().enumerate().take(V::DIM) {
+        p.set_coord(i, c);
+    }
+    p
+}
+
+/// The bins of one axis.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct AxisBins {
+    pub axis: usize,
+    pub lo: f32,
+    pub scale: f32,
+}
+
+impl AxisBins {
+    /// The bin of a centre coordinate; NaN and out-of-range values are clamped into range
+    /// (`split_sah`'s `as usize` then `min`: the same bin, through a cheaper conversion).
+    /// `bins` is at most [`MAX_BINS`], so the mask only tells the compiler the index fits.
+    #[inline]
+    pub fn bin_of(&self, coord: f32, bins: usize) -> usize {
+        (((coord - self.lo) * self.scale) as u32).min(bins as u32 - 1) as usize & (MAX_BINS - 1)
+    }
+}
+
+/// The cheapest plane: after bin `best` on `axis`, with `left` primitives below it.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Cheapest {
+    pub bins: AxisBins,
+    pub best: usize,
+    pub cost: f32,
+    pub left: usize,
+}
+
+/// The per-bin boxes and counts of every axis, reused from node to node: only the bins a
+/// node filled are cleared after it.
+#[derive(Clone, Debug)]
+pub(super) struct Binner {
+    bins: usize,
+    boxes: [[LaneBox; MAX_BINS]; 3],
+    counts: [[u32; MAX_BINS]; 3],
+    occupied: [u64; 3],
+    /// The sweep's area and count above each occupied bin (no need to clear between uses).
+    above: [(f64, usize); MAX_BINS],
+}
+
+impl Binner {
+    pub fn new(bins: usize) -> Box<Self> {
+        Box::new(Self {
+            bins: bins.clamp(2, MAX_BINS),
+            boxes: [[LaneBox::EMPTY; MAX_BINS]; 3],
+            counts: [[0; MAX_BINS]; 3],
+            occupied: [0; 3],
+            above: [(0.0, 0); MAX_BINS],
+        })
+    }
+
+    /// The node's cheapest plane over `items` (their boxes, centres, in order), or `None`
+    /// when the SAH says nothing (no area, or no axis along which the centres differ).
+    pub fn cheapest<V: Vector>(
+        &mut self,
+        bounds: &LaneBox,
+        centroids: &LaneBox,
+        items: &[super::fast::Item],
+    ) -> Option<Cheapest> {
+        let node_area = bounds.half_area::<V>();
+        if !(node_area > 0.0 && node_area.is_finite()) {
+            return None;
+        }
+        // The axes along which the centres differ, in axis order.
+        let mut axes = [AxisBins {
+            axis: 0,
+            lo: 0.0,
+            scale: 0.0,
+        }; 3];
+        let mut k = 0;
+        for axis in 0..V::DIM {
+            let lo = centroids.min[axis];
+            let extent = centroids.max[axis] - lo;
+            if extent > 0.0 && extent.is_finite() {
+                axes[k] = AxisBins {
+                    axis,
+                    lo,
+                    scale: self.bins as f32 / extent,
+                };
+                k += 1;
+            }
+        }
+        if let [a, b] = items {
+            return Self::cheapest_of_two::<V>(&axes[..k], self.bins, [a, b], node_area);
+        }
+        match k {
+            3 => self.fill::<3>(&axes, items),
+            2 => self.fill::<2>(&axes, items),
+            1 => self.fill::<1>(&axes, items),
+            _ => return None,
+        }
+        let mut best: Option<Cheapest> = None;
+        for &bins in &axes[..k] {
+            let curve = self.sweep::<V>(bins, node_area);
+            if best.is_none_or(|b| curve.cost < b.cost) {
+                best = Some(curve);
+            }
+        }
+        self.clear();
+        best.filter(|b| b.cost.is_finite())
+    }
+
+    /// [`cheapest`](Self::cheapest) of a node of two items (a third of the calls on a mesh),
+    /// without the bins: on each axis either both fall in one bin (no plane) or the one
+    /// plane after the lower bin has that item's box below it and the other's above, and
+    /// the sweeps' merges with the empty box give each box itself.
+    fn cheapest_of_two<V: Vector>(
+        axes: &[AxisBins],
+        bins: usize,
+        items: [&super::fast::Item; 2],
+        node_area: f64,
+    ) -> Option<Cheapest> {
+        let mut best: Option<Cheapest> = None;
+        for &axis_bins in axes {
+            let axis = axis_bins.axis;
+            let [i, j] = items.map(|item| axis_bins.bin_of(item.centroid[axis], bins));
+            let mut curve = Cheapest {
+                bins: axis_bins,
+                best: 0,
+                cost: f32::INFINITY,
+                left: 0,
+            };
+            if i != j {
+                let (low, high) = if i < j { (0, 1) } else { (1, 0) };
+                let area_low = items[low].bounds.half_area::<V>();
+                let area_high = items[high].bounds.half_area::<V>();
+                curve.cost = (1.0 + (area_low * 1.0 + area_high * 1.0) / node_area) as f32;
+                curve.best = i.min(j);
+                curve.left = 1;
+            }
+            if best.is_none_or(|b| curve.cost < b.cost) {
+                best = Some(curve);
+            }
+        }
+        best.filter(|b| b.cost.is_finite())
+    }
+
+    /// Puts every item in its bin on each of the first `K` axes.
+    #[inline]
+    fn fill<const K: usize>(&mut self, axes: &[AxisBins; 3], items: &[super::fast::Item]) {
+        let bins = self.bins;
+        for item in items {
+            for bin_axis in &axes[..K] {
+                let axis = bin_axis.axis;
+                let i = bin_axis.bin_of(item.centroid[axis], bins);
+                self.occupied[axis] |= 1 << i;
+                let b = &mut self.boxes[axis][i];
+                *b = b.merge(&item.bounds);
+                self.counts[axis][i] += 1;
+            }
+        }
+    }
+
+    /// The cheapest plane of one axis, costed after each occupied bin but the last (a plane
+    /// after an empty bin costs what the one before it costs and never wins the strict
+    /// comparison, as `finish_best` explains).
+    fn sweep<V: Vector>(&mut self, bins: AxisBins, node_area: f64) -> Cheapest {
+        let axis = bins.axis;
+        let mut occupied = [0u8; MAX_BINS];
+        let mut m = 0;
+        let mut mask = self.occupied[axis];
+        while mask != 0 {
+            occupied[m] = mask.trailing_zeros() as u8;
+            mask &= mask - 1;
+            m += 1;
+        }
+        let occupied = &occupied[..m];
+        let (boxes, counts) = (&self.boxes[axis], &self.counts[axis]);
+        // Sweep from the right: `above[j]` is everything after occupied bin `j`.
+        let above = &mut self.above;
+        let (mut acc, mut n) = (LaneBox::EMPTY, 0usize);
+        for j in (1..m).rev() {
+            let i = usize::from(occupied[j]);
+            acc = acc.merge(&boxes[i]);
+            n += counts[i] as usize;
+            above[j - 1] = (acc.half_area::<V>(), n);
+        }
+        let mut best = Cheapest {
+            bins,
+            best: 0,
+            cost: f32::INFINITY,
+            left: 0,
+        };
+        let (mut acc, mut n) = (LaneBox::EMPTY, 0usize);
+        for (j, &i) in occupied.iter().enumerate().take(m.saturating_sub(1)) {
+            let i = usize::from(i);
+            acc = acc.merge(&boxes[i]);
+            n += counts[i] as usize;
+            let (area_above, n_above) = above[j];
+            let cost = (1.0
+                + (acc.half_area::<V>() * n as f64 + area_above * n_above as f64) / node_area)
+                as f32;
+            if cost < best.cost {
+                best.best = i;
+                best.cost = cost;
+                best.left = n;
+            }
+        }
+        best
+    }
+
+    /// Empties the bins the node used.
+    fn clear(&mut self) {
+        for axis in 0..3 {
+            let mut mask = std::mem::take(&mut self.occupied[axis]);
+            while mask != 0 {
+                let i = mask.trailing_zeros() as usize;
+                self.boxes[axis][i] = LaneBox::EMPTY;
+                self.counts[axis][i] = 0;
+                mask &= mask - 1;
+            }
+        }
+    }
+}

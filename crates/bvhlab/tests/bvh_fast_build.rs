@@ -1,0 +1,167 @@
+//! The one-go box-tree build (`build/fast.rs`, what [`Bvh::with_options`] runs for a
+//! binned-SAH AABB tree) against the resumable builder the lab steps through ([`BvhBuild`]
+//! and [`Bvh::build_observed`]): the same tree, bit for bit (every node's box, children and
+//! leaf range, and the leaf order), on every shared mesh and on seeded scenes built to hit
+//! each of its paths: nodes of two (its shortcut), coincident centres (the object-median
+//! fallback), flat and line-like scenes (axes that cannot be binned), every bin count, leaf
+//! size and depth limit.
+
+mod bvh_common;
+
+use std::path::PathBuf;
+
+use bvh_common::rng;
+use bvh_common::scenes::{degenerate, random};
+use bvhlab::glam::{Vec2, Vec3};
+use bvhlab::prelude::*;
+use bvhlab::structure::bvh::{AabbTree, Bvh, BvhBuild, BvhOptions};
+use bvhlab::{Aabb, Segment2};
+
+/// Everything of a box tree, as bits: `==` on floats would take `-0` for `0`.
+fn tree_bits<P: Primitive>(tree: &AabbTree<P>) -> (Vec<Vec<u32>>, Vec<u32>) {
+    let nodes = tree
+        .nodes()
+        .iter()
+        .map(|node| {
+            let bits = |v: P::Point| (0..P::Point::DIM).map(move |i| v.coord(i).to_bits());
+            bits(node.volume.min)
+                .chain(bits(node.volume.max))
+                .chain([node.start, node.count])
+                .collect()
+        })
+        .collect();
+    let leaf_order = (0..tree.nodes().len())
+        .flat_map(|i| {
+            tree.leaf_primitives(bvhlab::structure::NodeId(i as u32))
+                .to_vec()
+        })
+        .collect();
+    (nodes, leaf_order)
+}
+
+/// Builds `prims` with `options` three ways (one go, in slices, observed) and asserts one
+/// tree.
+fn assert_same_tree<P: Primitive>(name: &str, prims: &[P], options: &BvhOptions) {
+    let fast = Bvh::<Aabb<P::Point>, P>::with_options(prims, options);
+    let mut build = BvhBuild::<Aabb<P::Point>, P>::new(prims.to_vec(), *options);
+    while !build.is_done() {
+        build.step(997);
+    }
+    let stepped = build.finish();
+    let (observed, _) = Bvh::<Aabb<P::Point>, P>::build_observed(prims, options, &mut ());
+    let bits = tree_bits(&fast);
+    assert_eq!(
+        bits,
+        tree_bits(&stepped),
+        "{name}: one go and in slices, {options:?}"
+    );
+    assert_eq!(
+        bits,
+        tree_bits(&observed),
+        "{name}: one go and observed, {options:?}"
+    );
+    fast.validate()
+        .unwrap_or_else(|e| panic!("{name}: the tree is valid: {e}"));
+}
+
+/// The option sets the tests run: the default, and each knob at its edges.
+fn option_sets() -> Vec<BvhOptions> {
+    let default = BvhOptions::default();
+    let mut sets = vec![default];
+    for bins in [2, 3, 7, 32, 64, 1000] {
+        sets.push(BvhOptions { bins, ..default });
+    }
+    for max_leaf_size in [1, 2, 8, 64] {
+        sets.push(BvhOptions {
+            max_leaf_size,
+            ..default
+        });
+    }
+    for max_depth in [0, 1, 5] {
+        sets.push(BvhOptions {
+            max_depth,
+            ..default
+        });
+    }
+    sets
+}
+
+fn mesh(name: &str) -> Option<Vec<Triangle3>> {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../../shared/data/meshes")
+        .join(name);
+    let Ok(bytes) = std::fs::read(&path) else {
+        eprintln!("skipping {name}: the shared mesh folder is absent");
+        return None;
+    };
+    let mesh = Mesh::from_obj(&bytes).unwrap_or_else(|e| panic!("{name} loads: {e}"));
+    Some(mesh.triangles().to_vec())
+}
+
+#[test]
+fn every_shared_mesh_gives_the_same_tree() {
+    for name in [
+        "stanford-bunny.obj",
+        "dragon.obj",
+        "ogre.obj",
+        "spot.obj",
+        "teapot.obj",
+        "fandisk.obj",
+        "suzanne.obj",
+    ] {
+        if let Some(tris) = mesh(name) {
+            assert_same_tree(name, &tris, &BvhOptions::default());
+        }
+    }
+}
+
+#[test]
+fn a_mesh_with_every_option_set_gives_the_same_tree() {
+    let Some(tris) = mesh("spot.obj") else { return };
+    for options in option_sets() {
+        assert_same_tree("spot", &tris, &options);
+    }
+}
+
+#[test]
+fn degenerate_scenes_give_the_same_tree_in_2d_and_3d() {
+    let mut r = rng(71);
+    for options in option_sets() {
+        for (name, prims) in degenerate::<Triangle3>(&mut r) {
+            assert_same_tree(name, &prims, &options);
+        }
+        for (name, prims) in degenerate::<Segment2>(&mut r) {
+            assert_same_tree(name, &prims, &options);
+        }
+        for (name, prims) in degenerate::<Vec3>(&mut r) {
+            assert_same_tree(name, &prims, &options);
+        }
+        for (name, prims) in degenerate::<Vec2>(&mut r) {
+            assert_same_tree(name, &prims, &options);
+        }
+    }
+}
+
+#[test]
+fn pairs_and_coincident_centres_give_the_same_tree() {
+    let mut r = rng(72);
+    // Many nodes of two: a leaf size of 1 splits every pair the SAH allows.
+    let options = BvhOptions {
+        max_leaf_size: 1,
+        ..BvhOptions::default()
+    };
+    for n in [2, 3, 4, 5, 17, 64] {
+        let tris: Vec<Triangle3> = random(&mut r, n);
+        assert_same_tree("random", &tris, &options);
+        // Each triangle twice: pairs with one centre, which the SAH cannot bin and the
+        // object median splits.
+        let twins: Vec<Triangle3> = tris.iter().flat_map(|t| [*t, *t]).collect();
+        assert_same_tree("twins", &twins, &options);
+        assert_same_tree("twins", &twins, &BvhOptions::default());
+    }
+    // Non-finite primitives are left out the same way.
+    let mut tris: Vec<Triangle3> = random(&mut r, 50);
+    tris[7].a.x = f32::NAN;
+    tris[20].b.y = f32::INFINITY;
+    assert_same_tree("with NaN", &tris, &BvhOptions::default());
+}
