@@ -10,7 +10,7 @@
 //! [`WasmBench::first_hits`] and [`WasmBench::closest`].
 
 use bvhlab::structure::bvh::Bvh4;
-use bvhlab::{AabbTree3, Ray3, Triangle3};
+use bvhlab::{Ray3, Triangle3};
 use bvhlab_bench::workload::{RayKind, Workload, WorkloadSize, triangles_from_obj};
 use wasm_bindgen::prelude::*;
 
@@ -88,7 +88,7 @@ impl WasmBench {
     /// Builds bvhlab's AABB tree (binned SAH) and collapses it into the 4-wide tree that
     /// answers, replacing the previous one.
     pub fn build(&mut self) {
-        self.tree = Some(Bvh4::from_bvh(&AabbTree3::build(&self.tris)));
+        self.tree = Some(Bvh4::build(&self.tris));
     }
 
     /// The first-hit distance of every ray of kind `kind`, `-1` for a miss (or before

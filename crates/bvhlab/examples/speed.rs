@@ -50,10 +50,15 @@ fn main() {
             black_box(AabbTree3::build(black_box(tris)));
             t.elapsed().as_secs_f64() * 1e3
         });
+        let wide_ms = median(runs, || {
+            let t = Instant::now();
+            black_box(Bvh4::build(black_box(tris)));
+            t.elapsed().as_secs_f64() * 1e3
+        });
         let tree = AabbTree3::build(tris);
         let stats = tree.stats();
         println!(
-            "build: {ms:.1} ms, SAH cost {:.2}, {} nodes",
+            "build: {ms:.1} ms, SAH cost {:.2}, {} nodes; Bvh4::build {wide_ms:.1} ms",
             stats.sah_cost.unwrap_or(f32::NAN),
             stats.nodes
         );

@@ -14,7 +14,7 @@ use bvh_common::rng;
 use bvh_common::scenes::{degenerate, random};
 use bvhlab::glam::{Vec2, Vec3};
 use bvhlab::prelude::*;
-use bvhlab::structure::bvh::{AabbTree, Bvh, BvhBuild, BvhOptions};
+use bvhlab::structure::bvh::{AabbTree, Bvh, Bvh4, BvhBuild, BvhOptions, SplitMethod};
 use bvhlab::{Aabb, Segment2};
 
 /// Everything of a box tree, as bits: `==` on floats would take `-0` for `0`.
@@ -164,4 +164,28 @@ fn pairs_and_coincident_centres_give_the_same_tree() {
     tris[7].a.x = f32::NAN;
     tris[20].b.y = f32::INFINITY;
     assert_same_tree("with NaN", &tris, &BvhOptions::default());
+}
+
+/// `Bvh4::with_options` (built without keeping the binary tree) is the collapse of the
+/// binary tree built with the same options, for every option set and split method.
+#[test]
+fn a_wide_tree_built_directly_is_the_collapsed_binary_tree() {
+    let mut r = rng(73);
+    let mut scenes = degenerate::<Triangle3>(&mut r);
+    scenes.extend(mesh("spot.obj").map(|spot| ("spot", spot)));
+    let mut sets = option_sets();
+    for method in [SplitMethod::SpatialMedian, SplitMethod::ObjectMedian] {
+        sets.push(BvhOptions::with_method(method));
+    }
+    for (name, tris) in &scenes {
+        for options in &sets {
+            let direct = Bvh4::with_options(tris, options);
+            let collapsed = Bvh4::from_bvh(&AabbTree::with_options(tris, options));
+            assert!(direct == collapsed, "{name}, {options:?}");
+        }
+        assert!(
+            Bvh4::build(tris) == Bvh4::from_bvh(&AabbTree::build(tris)),
+            "{name}"
+        );
+    }
 }

@@ -26,7 +26,7 @@ mod fast;
 mod fast_bins;
 mod node_stages;
 
-pub(super) use fast::build_sah_boxes;
+pub(super) use fast::{build_sah_box_parts, build_sah_boxes};
 
 use super::build_job::{BuildPhase, BuildProgress};
 use super::build_log::SplitRecord;

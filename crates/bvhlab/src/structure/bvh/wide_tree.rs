@@ -15,8 +15,9 @@
 //! are fewer than four, the inner lane with the largest surface area is replaced by its two
 //! children (the greedy rule of Wald et al.), which opens the boxes most rays enter.
 
-use super::Bvh;
+use super::build::build_sah_box_parts;
 use super::tree::BvhNode;
+use super::{Bvh, BvhOptions, SplitMethod};
 use crate::volume::{Aabb, BoundingVolume};
 use crate::{Primitive, Vector};
 
@@ -123,6 +124,29 @@ pub struct Bvh4<P: Primitive> {
 }
 
 impl<P: Primitive> Bvh4<P> {
+    /// Builds the binned-SAH AABB tree over `prims` with the default options and collapses
+    /// it.
+    pub fn build(prims: &[P]) -> Self {
+        Self::with_options(prims, &BvhOptions::default())
+    }
+
+    /// Builds the AABB tree over `prims` with `options` and collapses it: the tree
+    /// `Bvh4::from_bvh(&AabbTree::with_options(prims, options))` makes, without the binary
+    /// tree's copies of the input and of the leaf order.
+    pub fn with_options(prims: &[P], options: &BvhOptions) -> Self {
+        if options.method != SplitMethod::BinnedSah {
+            return Self::from_bvh(&Bvh::with_options(prims, options));
+        }
+        let parts = build_sah_box_parts::<Aabb<P::Point>, P>(prims, options);
+        let (nodes, depth) = collapse(&parts.nodes);
+        Self {
+            nodes,
+            leaf_prims: parts.leaf_prims,
+            leaf_ids: parts.leaf_ids,
+            depth,
+        }
+    }
+
     /// Collapses a built AABB tree (its boxes, leaves and primitives are kept; only inner
     /// levels go).
     pub fn from_bvh(bvh: &Bvh<Aabb<P::Point>, P>) -> Self {

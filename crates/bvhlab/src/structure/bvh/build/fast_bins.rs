@@ -93,6 +93,8 @@ pub(super) struct AxisBins {
     pub axis: usize,
     pub lo: f32,
     pub scale: f32,
+    /// The last bin, `bins - 1`.
+    pub last: f32,
 }
 
 impl AxisBins {
@@ -100,8 +102,11 @@ impl AxisBins {
     /// (`split_sah`'s `as usize` then `min`: the same bin, through a cheaper conversion).
     /// `bins` is at most [`MAX_BINS`], so the mask only tells the compiler the index fits.
     #[inline]
-    pub fn bin_of(&self, coord: f32, bins: usize) -> usize {
-        (((coord - self.lo) * self.scale) as u32).min(bins as u32 - 1) as usize & (MAX_BINS - 1)
+    pub fn bin_of(&self, coord: f32) -> usize {
+        // `max` and `min` take NaN to 0 and bound the value, so the conversion needs no
+        // saturation of its own.
+        ((((coord - self.lo) * self.scale).max(0.0).min(self.last)) as u32) as usize
+            & (MAX_BINS - 1)
     }
 }
 
@@ -139,6 +144,7 @@ impl Binner {
 
     /// The node's cheapest plane over `items` (their boxes, centres, in order), or `None`
     /// when the SAH says nothing (no area, or no axis along which the centres differ).
+    #[inline]
     pub fn cheapest<V: Vector>(
         &mut self,
         bounds: &LaneBox,
@@ -154,6 +160,7 @@ impl Binner {
             axis: 0,
             lo: 0.0,
             scale: 0.0,
+            last: 0.0,
         }; 3];
         let mut k = 0;
         for axis in 0..V::DIM {
@@ -164,12 +171,13 @@ impl Binner {
                     axis,
                     lo,
                     scale: self.bins as f32 / extent,
+                    last: (self.bins - 1) as f32,
                 };
                 k += 1;
             }
         }
         if let [a, b] = items {
-            return Self::cheapest_of_two::<V>(&axes[..k], self.bins, [a, b], node_area);
+            return Self::cheapest_of_two::<V>(&axes[..k], [a, b], node_area);
         }
         match k {
             3 => self.fill::<3>(&axes, items),
@@ -194,14 +202,13 @@ impl Binner {
     /// the sweeps' merges with the empty box give each box itself.
     fn cheapest_of_two<V: Vector>(
         axes: &[AxisBins],
-        bins: usize,
         items: [&super::fast::Item; 2],
         node_area: f64,
     ) -> Option<Cheapest> {
         let mut best: Option<Cheapest> = None;
         for &axis_bins in axes {
             let axis = axis_bins.axis;
-            let [i, j] = items.map(|item| axis_bins.bin_of(item.centroid[axis], bins));
+            let [i, j] = items.map(|item| axis_bins.bin_of(item.centroid[axis]));
             let mut curve = Cheapest {
                 bins: axis_bins,
                 best: 0,
@@ -226,16 +233,21 @@ impl Binner {
     /// Puts every item in its bin on each of the first `K` axes.
     #[inline]
     fn fill<const K: usize>(&mut self, axes: &[AxisBins; 3], items: &[super::fast::Item]) {
-        let bins = self.bins;
+        // The occupied bits stay in registers through the loop (in `self` each item would
+        // read back the previous item's store).
+        let mut occupied = [0u64; K];
         for item in items {
-            for bin_axis in &axes[..K] {
+            for (bin_axis, occupied) in axes[..K].iter().zip(&mut occupied) {
                 let axis = bin_axis.axis;
-                let i = bin_axis.bin_of(item.centroid[axis], bins);
-                self.occupied[axis] |= 1 << i;
+                let i = bin_axis.bin_of(item.centroid[axis]);
+                *occupied |= 1 << i;
                 let b = &mut self.boxes[axis][i];
                 *b = b.merge(&item.bounds);
                 self.counts[axis][i] += 1;
             }
+        }
+        for (bin_axis, occupied) in axes[..K].iter().zip(occupied) {
+            self.occupied[bin_axis.axis] = occupied;
         }
     }
 
