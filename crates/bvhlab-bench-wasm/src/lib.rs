@@ -14,11 +14,15 @@ use bvhlab::{Ray3, Triangle3};
 use bvhlab_bench::workload::{RayKind, Workload, WorkloadSize, triangles_from_obj};
 use wasm_bindgen::prelude::*;
 
-/// One scene: its triangles, its workload and (once built) bvhlab's tree.
+/// One scene: its triangles, its workload, its rays as bvhlab's [`Ray3`] (prepared before
+/// any timing, as the native comparison converts every library's rays untimed), and (once
+/// built) bvhlab's tree.
 #[wasm_bindgen]
 pub struct WasmBench {
     tris: Vec<Triangle3>,
     work: Workload,
+    /// Per ray kind, each ray and its `t_max` (`None` for a ray `Ray3::new` refuses).
+    prepared: Vec<Vec<(Option<Ray3>, f32)>>,
     tree: Option<Bvh4<Triangle3>>,
 }
 
@@ -39,9 +43,19 @@ impl WasmBench {
         };
         size.points = size.points.min(max_points);
         let work = Workload::generate(&tris, &size);
+        let prepared = RayKind::ALL
+            .iter()
+            .map(|&kind| {
+                work.rays_of(kind)
+                    .iter()
+                    .map(|r| (Ray3::new(r.origin, r.dir).ok(), r.t_max))
+                    .collect()
+            })
+            .collect();
         Ok(Self {
             tris,
             work,
+            prepared,
             tree: None,
         })
     }
@@ -97,15 +111,15 @@ impl WasmBench {
         let Some(tree) = &self.tree else {
             return Vec::new();
         };
-        self.kind_rays(kind)
-            .iter()
-            .map(|r| {
-                Ray3::new(r.origin, r.dir)
-                    .ok()
-                    .and_then(|ray| tree.ray_first_hit(&ray, r.t_max))
-                    .map_or(-1.0, |hit| hit.t)
-            })
-            .collect()
+        self.prepared.get(kind).map_or_else(Vec::new, |rays| {
+            rays.iter()
+                .map(|(ray, t_max)| {
+                    ray.as_ref()
+                        .and_then(|ray| tree.ray_first_hit(ray, *t_max))
+                        .map_or(-1.0, |hit| hit.t)
+                })
+                .collect()
+        })
     }
 
     /// The distance from every query point to the nearest triangle (`-1` before `build`).

@@ -47,6 +47,33 @@ pub(crate) struct RayShear {
 }
 
 impl RayShear {
+    /// A point relative to the ray's origin, in the ray's frame: permuted and sheared so
+    /// that the ray runs along +z. A function, not a closure: WebAssembly builds left the
+    /// closure out of line, a call per corner.
+    #[inline]
+    fn apply(&self, p: Vec3) -> Sheared {
+        let (x, y, z) = (
+            Self::pick(p, self.kx),
+            Self::pick(p, self.ky),
+            Self::pick(p, self.kz),
+        );
+        Sheared {
+            x: x - self.sx * z,
+            y: y - self.sy * z,
+            z: self.sz * z,
+        }
+    }
+
+    /// Coordinate `k` (0, 1 or 2) of `p`.
+    #[inline]
+    fn pick(p: Vec3, k: u8) -> f32 {
+        match k {
+            0 => p.x,
+            1 => p.y,
+            _ => p.z,
+        }
+    }
+
     /// The setup for direction `d`.
     pub(crate) fn of(d: Vec3) -> Self {
         // kz: the dominant axis of the direction; kx, ky follow it cyclically, swapped when
@@ -86,24 +113,13 @@ impl Triangle3 {
     /// in sign at any `f32` scale. Both sides are hit; a ray in the triangle's plane is not.
     pub fn ray_hit(&self, ray: &Ray3) -> Option<f32> {
         // The permutation and shear of the ray's direction ([`RayShear`], made with the ray).
-        let &RayShear {
-            kx,
-            ky,
-            kz,
-            sx,
-            sy,
-            sz,
-        } = ray.shear();
-        let (kx, ky, kz) = (usize::from(kx), usize::from(ky), usize::from(kz));
-        let shear = |p: Vec3| {
-            let p = p - ray.origin();
-            Sheared {
-                x: p[kx] - sx * p[kz],
-                y: p[ky] - sy * p[kz],
-                z: sz * p[kz],
-            }
-        };
-        let (a, b, c) = (shear(self.a), shear(self.b), shear(self.c));
+        let shear = ray.shear();
+        let origin = ray.origin();
+        let (a, b, c) = (
+            shear.apply(self.a - origin),
+            shear.apply(self.b - origin),
+            shear.apply(self.c - origin),
+        );
 
         // Edge functions in f64: a product of two f32 values is exact there, so each edge
         // value is rounded once, from that edge's two corners alone, and a shared edge gives
