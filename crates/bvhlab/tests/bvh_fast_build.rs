@@ -159,6 +159,13 @@ fn pairs_and_coincident_centres_give_the_same_tree() {
         assert_same_tree("twins", &twins, &options);
         assert_same_tree("twins", &twins, &BvhOptions::default());
     }
+    // Centres a few subnormals apart: the bins' scale overflows to infinity and the
+    // least centre's bin position is `0 * inf`, a NaN, which the bins take as bin 0.
+    let tiny: Vec<Vec3> = (0..40)
+        .map(|i| Vec3::new(f32::from_bits(i % 7), f32::from_bits(3 * (i % 5)), 1.0))
+        .collect();
+    assert_same_tree("subnormal", &tiny, &options);
+    assert_same_tree("subnormal", &tiny, &BvhOptions::default());
     // Non-finite primitives are left out the same way.
     let mut tris: Vec<Triangle3> = random(&mut r, 50);
     tris[7].a.x = f32::NAN;

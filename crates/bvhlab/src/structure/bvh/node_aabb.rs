@@ -57,9 +57,24 @@ impl<V: Vector> NodeVolume for Aabb<V> {
     /// square root is [`distance`](BoundingVolume::distance) (`inf` for an empty box, as
     /// the distance is), so the walks that compare squares prune exactly where rounding
     /// allows.
+    ///
+    /// The clamp is written as comparisons, as the 4-wide walk's is: the same values (a NaN
+    /// coordinate gives a NaN offset either way), and one instruction each where
+    /// WebAssembly would call `fmaxf`/`fminf` for `f32::max`/`min`.
     #[inline]
     fn distance_bound_squared(&self, point: V) -> f32 {
-        (point.max(self.min).min(self.max) - point).length_squared()
+        let mut offset = V::ZERO;
+        for axis in 0..V::DIM {
+            let (p, lo, hi) = (
+                point.coord(axis),
+                self.min.coord(axis),
+                self.max.coord(axis),
+            );
+            let clamped = if p < lo { lo } else { p };
+            let clamped = if clamped > hi { hi } else { clamped };
+            offset.set_coord(axis, clamped - p);
+        }
+        offset.length_squared()
     }
 
     /// The entry of the slab test above. In WebAssembly it is computed four lanes at a

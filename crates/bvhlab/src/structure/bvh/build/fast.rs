@@ -267,10 +267,12 @@ fn median<V: Vector>(items: &mut [Item], centroids: &LaneBox) -> usize {
 /// is not), merging each side's boxes on the way. Returns how many went to the front, and
 /// the boxes of both sides.
 ///
-/// "The bin is at most `best`" is `((c - lo) * scale) as usize <= best`; the product is
-/// finite and not negative (`lo` is the least centre), so it truncates to at most `best`
-/// exactly when it is below `best + 1`, a small integer that `f32` holds exactly. The
-/// comparison saves the conversion.
+/// "The bin is at most `best`" is `((c - lo) * scale) as usize <= best` (then clamped to
+/// the last bin, which is beyond `best`). A product that is not negative truncates to at
+/// most `best` exactly when it is below `best + 1`, a small integer that `f32` holds
+/// exactly; a NaN product (`0 * inf`, when the centres' extent is so small that `scale`
+/// overflows) converts to bin 0, so it goes to the front too: the test is "not at least
+/// `best + 1`". The comparison saves the conversion.
 fn partition(items: &mut [Item], cheapest: &Cheapest) -> (usize, Boxes, Boxes) {
     let AxisBins {
         axis, lo, scale, ..
@@ -279,12 +281,13 @@ fn partition(items: &mut [Item], cheapest: &Cheapest) -> (usize, Boxes, Boxes) {
     let (mut mid, mut left, mut right) = (0, Boxes::EMPTY, Boxes::EMPTY);
     for i in 0..items.len() {
         let item = items[i];
-        if (item.centroid[axis] - lo) * scale < limit {
+        // A NaN position fails the comparison: bin 0, the front.
+        if (item.centroid[axis] - lo) * scale >= limit {
+            right.add(&item);
+        } else {
             left.add(&item);
             items.swap(i, mid);
             mid += 1;
-        } else {
-            right.add(&item);
         }
     }
     (mid, left, right)
