@@ -11,9 +11,10 @@
 //! 2007, §4.1: the children's bounds fall out of the partition pass).
 //!
 //! Only box trees qualify: a sphere or OBB node is fitted to the vertices below it, which the
-//! resumable builder gathers per node anyway. The decisions are the same calls in the same
-//! order (the same [`SahBinning`] over the same primitives in the same order, the same
-//! partition, the same object median), and a box's union is the same whatever the order of
+//! resumable builder gathers per node anyway. The decisions are the same in the same order
+//! (the binned costs of `split_sah`, computed as there by [`fast_bins`](super::fast_bins),
+//! over the same primitives in the same order; the same partition; the same object
+//! median), and a box's union is the same whatever the order of
 //! its merges (minimum and maximum of finite numbers; a `-0.0` against a `0.0` is the one
 //! difference, and [`NodeVolume::fit`] grows every box by at least `f32::MIN_POSITIVE`,
 //! which takes the zero's sign away), so the nodes, their order and the leaf order equal
