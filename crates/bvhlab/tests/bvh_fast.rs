@@ -6,9 +6,7 @@
 
 mod bvh_common;
 
-use std::path::PathBuf;
-
-use bvh_common::{TestPrim, rays_for, rng};
+use bvh_common::{TestPrim, rays_for, rng, shared_mesh};
 use bvhlab::glam::Vec3;
 use bvhlab::prelude::*;
 use bvhlab::structure::BruteForce;
@@ -156,27 +154,12 @@ fn random_scenes_at_every_scale() {
     }
 }
 
-/// The shared meshes' folder beside the repository, if present.
-fn mesh(name: &str) -> Option<Vec<Triangle3>> {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../../shared/data/meshes")
-        .join(name);
-    let Ok(bytes) = std::fs::read(&path) else {
-        eprintln!("skipping {name}: {} is absent", path.display());
-        return None;
-    };
-    Some(
-        Mesh::from_obj(&bytes)
-            .expect("a valid OBJ file")
-            .triangles()
-            .to_vec(),
-    )
-}
-
 #[test]
 fn real_meshes() {
     for (seed, name) in [(7, "stanford-bunny.obj"), (8, "fandisk.obj")] {
-        let Some(tris) = mesh(name) else { continue };
+        let Some(tris) = shared_mesh(name) else {
+            continue;
+        };
         let mut rng = rng(seed);
         let tree = AabbTree3::build(&tris);
         let (observed, log) = AabbTree3::build_observed(&tris, &BvhOptions::default(), &mut ());

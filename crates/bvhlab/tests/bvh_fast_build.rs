@@ -8,10 +8,8 @@
 
 mod bvh_common;
 
-use std::path::PathBuf;
-
-use bvh_common::rng;
 use bvh_common::scenes::{degenerate, random};
+use bvh_common::{rng, shared_mesh};
 use bvhlab::glam::{Vec2, Vec3};
 use bvhlab::prelude::*;
 use bvhlab::structure::bvh::{AabbTree, Bvh, Bvh4, BvhBuild, BvhOptions, SplitMethod};
@@ -86,18 +84,6 @@ fn option_sets() -> Vec<BvhOptions> {
     sets
 }
 
-fn mesh(name: &str) -> Option<Vec<Triangle3>> {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../../shared/data/meshes")
-        .join(name);
-    let Ok(bytes) = std::fs::read(&path) else {
-        eprintln!("skipping {name}: the shared mesh folder is absent");
-        return None;
-    };
-    let mesh = Mesh::from_obj(&bytes).unwrap_or_else(|e| panic!("{name} loads: {e}"));
-    Some(mesh.triangles().to_vec())
-}
-
 #[test]
 fn every_shared_mesh_gives_the_same_tree() {
     for name in [
@@ -109,7 +95,7 @@ fn every_shared_mesh_gives_the_same_tree() {
         "fandisk.obj",
         "suzanne.obj",
     ] {
-        if let Some(tris) = mesh(name) {
+        if let Some(tris) = shared_mesh(name) {
             assert_same_tree(name, &tris, &BvhOptions::default());
         }
     }
@@ -117,7 +103,9 @@ fn every_shared_mesh_gives_the_same_tree() {
 
 #[test]
 fn a_mesh_with_every_option_set_gives_the_same_tree() {
-    let Some(tris) = mesh("spot.obj") else { return };
+    let Some(tris) = shared_mesh("spot.obj") else {
+        return;
+    };
     for options in option_sets() {
         assert_same_tree("spot", &tris, &options);
     }
@@ -179,7 +167,7 @@ fn pairs_and_coincident_centres_give_the_same_tree() {
 fn a_wide_tree_built_directly_is_the_collapsed_binary_tree() {
     let mut r = rng(73);
     let mut scenes = degenerate::<Triangle3>(&mut r);
-    scenes.extend(mesh("spot.obj").map(|spot| ("spot", spot)));
+    scenes.extend(shared_mesh("spot.obj").map(|spot| ("spot", spot)));
     let mut sets = option_sets();
     for method in [SplitMethod::SpatialMedian, SplitMethod::ObjectMedian] {
         sets.push(BvhOptions::with_method(method));

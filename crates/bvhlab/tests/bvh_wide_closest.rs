@@ -8,9 +8,7 @@
 
 mod bvh_common;
 
-use std::path::PathBuf;
-
-use bvh_common::{TestPrim, rng};
+use bvh_common::{TestPrim, rng, shared_mesh};
 use bvhlab::glam::Vec3;
 use bvhlab::prelude::*;
 use bvhlab::structure::BruteForce;
@@ -66,23 +64,6 @@ fn check(name: &str, tris: &[Triangle3], points: &[Vec3]) {
     }
 }
 
-/// A shared mesh's triangles, or none when the folder beside the repository is absent.
-fn mesh(name: &str) -> Option<Vec<Triangle3>> {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../../shared/data/meshes")
-        .join(name);
-    let Ok(bytes) = std::fs::read(&path) else {
-        eprintln!("skipping {name}: {} is absent", path.display());
-        return None;
-    };
-    Some(
-        Mesh::from_obj(&bytes)
-            .expect("a valid OBJ file")
-            .triangles()
-            .to_vec(),
-    )
-}
-
 #[test]
 fn real_meshes_on_the_peer_workload() {
     for (seed, name, n) in [
@@ -93,7 +74,9 @@ fn real_meshes_on_the_peer_workload() {
         (25, "teapot.obj", 400),
         (26, "suzanne.obj", 400),
     ] {
-        let Some(tris) = mesh(name) else { continue };
+        let Some(tris) = shared_mesh(name) else {
+            continue;
+        };
         let mut rng = rng(seed);
         let points = workload_points(&mut rng, &tris, n);
         check(name, &tris, &points);
@@ -105,7 +88,7 @@ fn real_meshes_on_the_peer_workload() {
 /// its triangles.
 #[test]
 fn bunny_scaled_and_moved() {
-    let Some(tris) = mesh("stanford-bunny.obj") else {
+    let Some(tris) = shared_mesh("stanford-bunny.obj") else {
         return;
     };
     let transforms: [(&str, f32, Vec3); 5] = [
@@ -128,7 +111,9 @@ fn bunny_scaled_and_moved() {
 #[test]
 fn duplicated_triangles_answer_the_lower_index() {
     for name in ["suzanne.obj", "spot.obj"] {
-        let Some(tris) = mesh(name) else { continue };
+        let Some(tris) = shared_mesh(name) else {
+            continue;
+        };
         let doubled: Vec<Triangle3> = tris.iter().chain(&tris).copied().collect();
         let mut rng = rng(40);
         let points = workload_points(&mut rng, &doubled, 400);

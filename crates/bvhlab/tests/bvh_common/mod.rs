@@ -19,6 +19,20 @@ use bvhlab::prelude::*;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
+/// A shared mesh's triangles (`../shared/data/meshes` beside the repository), or `None`
+/// with a message when that folder is absent (the tests then skip the mesh).
+pub fn shared_mesh(name: &str) -> Option<Vec<Triangle3>> {
+    let path = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../../shared/data/meshes")
+        .join(name);
+    let Ok(bytes) = std::fs::read(&path) else {
+        eprintln!("skipping {name}: {} is absent", path.display());
+        return None;
+    };
+    let mesh = Mesh::from_obj(&bytes).unwrap_or_else(|e| panic!("{name} loads: {e}"));
+    Some(mesh.triangles().to_vec())
+}
+
 pub fn rng(seed: u64) -> ChaCha8Rng {
     ChaCha8Rng::seed_from_u64(seed)
 }
