@@ -131,6 +131,25 @@ impl HitTracker {
     pub fn best(&self) -> Option<Hit> {
         self.best
     }
+
+    /// Offers the hit of every primitive of a leaf (`ids` are their input indices), for the
+    /// unobserved walks; whether the best changed. A hit beyond `t_max` is refused by
+    /// [`offer`](Self::offer) itself: the best is never beyond it.
+    #[inline]
+    pub(crate) fn offer_leaf<P: Primitive>(
+        &mut self,
+        prims: &[P],
+        ids: &[u32],
+        ray: &crate::Ray<P::Point>,
+    ) -> bool {
+        let mut changed = false;
+        for (prim, &id) in prims.iter().zip(ids) {
+            if let Some(t) = prim.ray_hit(ray) {
+                changed |= self.offer(id as usize, t);
+            }
+        }
+        changed
+    }
 }
 
 /// The `k` nearest primitives so far, ordered by (distance, index).

@@ -37,7 +37,7 @@ where
         }
         // The primitives' distances are rounded at the query point's scale.
         let slack = query_slack(point);
-        let mut best: Option<Nearest<P::Point>> = None;
+        let mut best = Best::NONE;
         // The square of what a node's bound may be and still hold something as near as the
         // best, with room for rounding (`reach_squared`).
         let mut reach_sq = f32::INFINITY;
@@ -58,24 +58,12 @@ where
             let node = &self.nodes[current as usize];
             if node.is_leaf() {
                 let range = node.leaf_range();
-                for (prim, &id) in self.leaf_prims[range.clone()]
-                    .iter()
-                    .zip(&self.leaf_ids[range])
-                {
-                    let q = prim.closest_point(point);
-                    let distance = (q - point).length();
-                    let id = id as usize;
-                    let better = best.is_none_or(|b| {
-                        distance < b.distance || (distance == b.distance && id < b.prim)
-                    });
-                    if better && !distance.is_nan() {
-                        best = Some(Nearest {
-                            prim: id,
-                            point: q,
-                            distance,
-                        });
-                        reach_sq = reach_squared(distance * GROW + slack);
-                    }
+                if best.test_leaf(
+                    &self.leaf_prims[range.clone()],
+                    &self.leaf_ids[range],
+                    point,
+                ) {
+                    reach_sq = reach_squared(best.distance * GROW + slack);
                 }
             } else {
                 let (first, second) = (current + 1, node.start);
@@ -107,7 +95,7 @@ where
             // Pop the next waiting node the best has not moved in front of.
             loop {
                 if len == 0 {
-                    return best;
+                    return best.into_nearest();
                 }
                 len -= 1;
                 let (node, squared) = stack[len];
@@ -132,4 +120,58 @@ where
 #[inline]
 pub(super) fn reach_squared(reach: f32) -> f32 {
     reach * reach * (1.0 + 4e-6) + 4.0 * f32::from_bits(1)
+}
+
+/// The best primitive so far, in registers rather than in an `Option`: none yet is the
+/// distance `+inf` with the index `usize::MAX`, which every primitive whose distance is not
+/// NaN beats (one at distance `+inf` by its lower index, as input indices are `u32`), just
+/// as every such primitive replaces `None` in the observed walk; a NaN distance never wins.
+/// The binary and the 4-wide fast walks share it.
+pub(super) struct Best<V: Vector> {
+    pub(super) prim: usize,
+    pub(super) point: V,
+    pub(super) distance: f32,
+}
+
+impl<V: Vector> Best<V> {
+    pub(super) const NONE: Self = Self {
+        prim: usize::MAX,
+        point: V::ZERO,
+        distance: f32::INFINITY,
+    };
+
+    /// Tests the primitives of one leaf (`ids` are their input indices) with the observed
+    /// walk's rule, the least `(distance, index)` wins; whether the best changed.
+    #[inline]
+    pub(super) fn test_leaf<P: Primitive<Point = V>>(
+        &mut self,
+        prims: &[P],
+        ids: &[u32],
+        point: V,
+    ) -> bool {
+        let mut changed = false;
+        for (prim, &id) in prims.iter().zip(ids) {
+            let q = prim.closest_point(point);
+            let distance = (q - point).length();
+            let id = id as usize;
+            if distance < self.distance || (distance == self.distance && id < self.prim) {
+                *self = Self {
+                    prim: id,
+                    point: q,
+                    distance,
+                };
+                changed = true;
+            }
+        }
+        changed
+    }
+
+    /// The answer: none when no primitive had a distance that is not NaN.
+    pub(super) fn into_nearest(self) -> Option<Nearest<V>> {
+        (self.prim != usize::MAX).then_some(Nearest {
+            prim: self.prim,
+            point: self.point,
+            distance: self.distance,
+        })
+    }
 }

@@ -52,15 +52,8 @@ where
             let node = &self.nodes[current as usize];
             if node.is_leaf() {
                 let range = node.leaf_range();
-                for (prim, &id) in self.leaf_prims[range.clone()]
-                    .iter()
-                    .zip(&self.leaf_ids[range])
-                {
-                    if let Some(t) = prim.ray_hit(ray).filter(|&t| t <= t_max)
-                        && best.offer(id as usize, t)
-                    {
-                        limit = t;
-                    }
+                if best.offer_leaf(&self.leaf_prims[range.clone()], &self.leaf_ids[range], ray) {
+                    limit = best.limit();
                 }
             } else {
                 let (first, second) = (current + 1, node.start);

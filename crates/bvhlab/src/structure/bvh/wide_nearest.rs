@@ -21,7 +21,7 @@
 //! primitive not pruned, whatever the order they are met in.
 
 use super::MAX_DEPTH;
-use super::fast_nearest::reach_squared;
+use super::fast_nearest::{Best, reach_squared};
 use super::volume::{GROW, query_slack};
 use super::wide_stack::{Lane, SHALLOW_DEPTH, capacity, visit_nearest};
 use super::wide_tree::{Bvh4, Bvh4Node, WIDTH};
@@ -161,52 +161,4 @@ fn within(squared: &[f32; WIDTH], reach_sq: f32) -> u32 {
         mask |= u32::from(kept) << lane;
     }
     mask
-}
-
-/// The best primitive so far, in registers rather than in an `Option`: none yet is the
-/// distance `+inf` with the index `usize::MAX`, which every primitive whose distance is not
-/// NaN beats (one at distance `+inf` by its lower index, as input indices are `u32`), just
-/// as every such primitive replaces `None` in the binary walks; a NaN distance never wins.
-struct Best<V: Vector> {
-    prim: usize,
-    point: V,
-    distance: f32,
-}
-
-impl<V: Vector> Best<V> {
-    const NONE: Self = Self {
-        prim: usize::MAX,
-        point: V::ZERO,
-        distance: f32::INFINITY,
-    };
-
-    /// Tests the primitives of one leaf (`ids` are their input indices) with the binary
-    /// walks' rule, the least `(distance, index)` wins; whether the best changed.
-    #[inline]
-    fn test_leaf<P: Primitive<Point = V>>(&mut self, prims: &[P], ids: &[u32], point: V) -> bool {
-        let mut changed = false;
-        for (prim, &id) in prims.iter().zip(ids) {
-            let q = prim.closest_point(point);
-            let distance = (q - point).length();
-            let id = id as usize;
-            if distance < self.distance || (distance == self.distance && id < self.prim) {
-                *self = Self {
-                    prim: id,
-                    point: q,
-                    distance,
-                };
-                changed = true;
-            }
-        }
-        changed
-    }
-
-    /// The answer: none when no primitive had a distance that is not NaN.
-    fn into_nearest(self) -> Option<Nearest<V>> {
-        (self.prim != usize::MAX).then_some(Nearest {
-            prim: self.prim,
-            point: self.point,
-            distance: self.distance,
-        })
-    }
 }

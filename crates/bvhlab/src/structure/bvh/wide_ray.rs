@@ -130,15 +130,8 @@ impl<P: Primitive> Bvh4<P> {
         loop {
             if current.count > 0 {
                 let range = current.child as usize..(current.child + current.count) as usize;
-                for (prim, &id) in self.leaf_prims[range.clone()]
-                    .iter()
-                    .zip(&self.leaf_ids[range])
-                {
-                    if let Some(t) = prim.ray_hit(ray).filter(|&t| t <= t_max)
-                        && best.offer(id as usize, t)
-                    {
-                        limit = t;
-                    }
+                if best.offer_leaf(&self.leaf_prims[range.clone()], &self.leaf_ids[range], ray) {
+                    limit = best.limit();
                 }
             } else {
                 let node = &self.nodes[current.child as usize];
