@@ -259,3 +259,54 @@ fn wide_tree_in_2d() {
     }
     assert!(hits > 500, "only {hits} hits");
 }
+
+/// The wide walks size their stacks by the tree's depth (up to 16 wide levels, up to 24,
+/// deeper): chains of triangles whose sizes halve one after another, split by the spatial
+/// median one triangle per level, make trees of every size class, and each answers as the
+/// binary and observed walks and brute force do, toward every triangle of the chain.
+#[test]
+fn wide_stacks_of_every_depth() {
+    let mut rng = rng(11);
+    let options = BvhOptions {
+        max_leaf_size: 1,
+        ..BvhOptions::with_method(SplitMethod::SpatialMedian)
+    };
+    let mut depths = Vec::new();
+    for n in [24i32, 70, 90] {
+        let tris: Vec<Triangle3> = (0..n)
+            .map(|i| {
+                let s = 2.0f32.powi(-i);
+                Triangle3::new(
+                    Vec3::new(s, 0.0, 0.0),
+                    Vec3::new(s * 1.5, s, 0.0),
+                    Vec3::new(s * 1.5, 0.0, s),
+                )
+            })
+            .collect();
+        let tree = AabbTree3::with_options(&tris, &options);
+        let wide = Bvh4::from_bvh(&tree);
+        depths.push(wide.depth());
+        // Down onto each triangle, from above and from the side, and through the box.
+        let mut rays = box_rays(&mut rng, &tris, 200);
+        for t in &tris {
+            let centre = t.centroid();
+            rays.extend(Ray3::new(
+                centre + Vec3::new(0.1, 0.2, 3.0),
+                -Vec3::new(0.1, 0.2, 3.0),
+            ));
+            rays.extend(Ray3::new(centre - Vec3::X, Vec3::X));
+        }
+        let name = format!("chain of {n} ({} wide levels)", wide.depth());
+        let hits = check_rays(&name, &tree, &rays, rays.len());
+        assert!(hits > tris.len(), "{name}: {hits} hits");
+        let mut points = box_points(&mut rng, &tris, 100);
+        points.extend(tris.iter().map(|t| t.centroid() * 0.999));
+        check_points(&name, &tree, &points, points.len());
+    }
+    let classes = [
+        depths.iter().any(|&d| d <= 16),
+        depths.iter().any(|&d| (17..=24).contains(&d)),
+        depths.iter().any(|&d| d > 24),
+    ];
+    assert_eq!(classes, [true; 3], "wide depths {depths:?}");
+}

@@ -23,7 +23,7 @@
 use super::MAX_DEPTH;
 use super::fast_nearest::{Best, reach_squared};
 use super::volume::{GROW, query_slack};
-use super::wide_stack::{Lane, SHALLOW_DEPTH, capacity, visit_nearest};
+use super::wide_stack::{Lane, MIDDLE_DEPTH, SHALLOW_DEPTH, capacity, visit_nearest};
 use super::wide_tree::{Bvh4, Bvh4Node, WIDTH};
 use crate::structure::Nearest;
 use crate::{Primitive, Vector};
@@ -74,6 +74,8 @@ impl<P: Primitive> Bvh4<P> {
         }
         if self.depth <= SHALLOW_DEPTH {
             self.closest_walk::<{ capacity(SHALLOW_DEPTH) }>(point)
+        } else if self.depth <= MIDDLE_DEPTH {
+            self.closest_walk::<{ capacity(MIDDLE_DEPTH) }>(point)
         } else {
             self.closest_walk::<{ capacity(MAX_DEPTH + 1) }>(point)
         }

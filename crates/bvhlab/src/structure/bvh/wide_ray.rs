@@ -19,7 +19,7 @@ use super::MAX_DEPTH;
 use glam::Vec4;
 
 use super::volume::{GROW, PreparedRay};
-use super::wide_stack::{Lane, SHALLOW_DEPTH, capacity, visit_nearest};
+use super::wide_stack::{Lane, MIDDLE_DEPTH, SHALLOW_DEPTH, capacity, visit_nearest};
 use super::wide_tree::{Bvh4, Bvh4Node, WIDTH};
 use crate::structure::{Hit, HitTracker};
 use crate::{Primitive, Ray, Vector};
@@ -112,6 +112,8 @@ impl<P: Primitive> Bvh4<P> {
         }
         if self.depth <= SHALLOW_DEPTH {
             self.first_hit_walk::<{ capacity(SHALLOW_DEPTH) }>(ray, t_max)
+        } else if self.depth <= MIDDLE_DEPTH {
+            self.first_hit_walk::<{ capacity(MIDDLE_DEPTH) }>(ray, t_max)
         } else {
             self.first_hit_walk::<{ capacity(MAX_DEPTH + 1) }>(ray, t_max)
         }

@@ -2,15 +2,20 @@
 //! (ray entry `t` or squared distance bound) that decides whether they still need to be.
 //!
 //! The stack lives in a fixed-size array on the call stack, which is zeroed on every query:
-//! its size is chosen per tree from the wide tree's depth ([`SHALLOW_DEPTH`] levels fit in
-//! a short array, deeper trees get one for [`MAX_DEPTH`](super::MAX_DEPTH)), since the
-//! longest (2.3 KB) would be zeroed on every ray, a coherent one taking only about 250
-//! cycles.
+//! its size is chosen per tree from the wide tree's depth ([`SHALLOW_DEPTH`] and
+//! [`MIDDLE_DEPTH`] levels fit in shorter arrays, deeper trees get one for
+//! [`MAX_DEPTH`](super::MAX_DEPTH)), since the longest (2.3 KB) would be zeroed on every ray,
+//! a coherent one taking only about 250 cycles. The middle size is for the largest meshes:
+//! the 2M-triangle sphere of the peer comparison has 17 wide levels, and zeroing the longest
+//! stack cost its primary rays 5% and its diffuse rays 5-8% (measured against this tier).
 
 use super::wide_tree::{Bvh4Node, WIDTH};
 
 /// Wide trees at most this deep (in wide levels) take the walks with the short stack.
 pub(super) const SHALLOW_DEPTH: usize = 16;
+
+/// Wide trees deeper than [`SHALLOW_DEPTH`] and at most this deep take the middle stack.
+pub(super) const MIDDLE_DEPTH: usize = 24;
 
 /// The stack size for a wide tree of `depth` levels: each node visited leaves at most
 /// `WIDTH - 1` children waiting, and only the nodes on the path to the current one have
