@@ -102,3 +102,44 @@ pub(super) fn visit_nearest<const CAP: usize>(
     *len -= 1;
     stack[*len]
 }
+
+/// Wide trees whose nodes take more than this many bytes load the nodes of children that
+/// will wait on the stack as soon as they are pushed ([`touch_waiting`]).
+pub(super) const TOUCH_AHEAD_BYTES: usize = 8 << 20;
+
+/// Reads a word from each of the two cache lines of every inner child in `mask` when more
+/// than one is set, so that the ones left waiting are on their way into the cache while
+/// the nearest is walked.
+///
+/// A tree far larger than the cache misses on most nodes of an incoherent walk, and each
+/// miss stalls it, as the next node's address comes from the one before; these loads are
+/// independent of the walk, so the processor overlaps them with it. Measured on the peer
+/// workload (medians of three interleaved runs): on the 2M-triangle sphere (66 MB of
+/// nodes) primary and random rays 4-5% and closest points 16% faster, on the 420k-triangle
+/// torus (15 MB) closest points 8% (its rays within 1%); on the shared meshes (at most
+/// 4.4 MB, mostly in cache) nothing beyond the noise, so smaller trees skip it
+/// ([`TOUCH_AHEAD_BYTES`]). A prefetch instruction would be
+/// the usual tool (`_mm_prefetch` gained a little more on the sphere's rays), but Rust
+/// offers it only as `unsafe`, and this crate has none; plain loads kept by
+/// [`black_box`](std::hint::black_box) do most of its work.
+#[expect(
+    clippy::inline_always,
+    reason = "in the hot step of the walk: left out of line it costs a call per node"
+)]
+#[inline(always)]
+pub(super) fn touch_waiting(nodes: &[Bvh4Node], node: &Bvh4Node, mask: u32) {
+    if mask.is_power_of_two() {
+        return;
+    }
+    let mut bits = mask;
+    while bits != 0 {
+        let lane = bits.trailing_zeros() as usize;
+        bits &= bits - 1;
+        if node.count[lane] == 0
+            && let Some(child) = nodes.get(node.child[lane] as usize)
+        {
+            std::hint::black_box(child.planes[0][0][0]);
+            std::hint::black_box(child.child[0]);
+        }
+    }
+}
