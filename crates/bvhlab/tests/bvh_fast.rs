@@ -310,39 +310,3 @@ fn wide_stacks_of_every_depth() {
     ];
     assert_eq!(classes, [true; 3], "wide depths {depths:?}");
 }
-
-/// A wide tree too large for the cache (over 8 MiB of nodes) takes the walks that load
-/// waiting children ahead (`wide_stack::touch_waiting`): they answer as the binary and
-/// observed walks and brute force do.
-#[test]
-fn wide_trees_larger_than_the_cache() {
-    let mut rng = rng(12);
-    let tris: Vec<Triangle3> = (0..300_000)
-        .map(|_| {
-            let centre: Vec3 = bvh_common::random_vector(&mut rng, 100.0);
-            Triangle3::random(&mut rng, 0.5).map(|v| v + centre)
-        })
-        .collect();
-    let tree = AabbTree3::build(&tris);
-    let wide = Bvh4::from_bvh(&tree);
-    assert!(
-        wide.node_bytes() > 8 << 20,
-        "{} bytes of nodes: too few to load ahead",
-        wide.node_bytes()
-    );
-    // Through the box, and from the box toward a triangle's centre.
-    let mut rays = box_rays(&mut rng, &tris, 1000);
-    let origins = box_points(&mut rng, &tris, 2000);
-    for origin in origins {
-        let target = tris[rng.random_range(0..tris.len())].centroid();
-        rays.extend(Ray3::new(origin, target - origin));
-    }
-    let hits = check_rays("300k triangles", &tree, &rays, 40);
-    assert!(hits > rays.len() / 2, "only {hits} hits of {}", rays.len());
-    check_points(
-        "300k triangles",
-        &tree,
-        &box_points(&mut rng, &tris, 1000),
-        20,
-    );
-}

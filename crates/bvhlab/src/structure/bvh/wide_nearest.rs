@@ -23,9 +23,7 @@
 use super::MAX_DEPTH;
 use super::fast_nearest::{Best, reach_squared};
 use super::volume::{GROW, query_slack};
-use super::wide_stack::{
-    Lane, MIDDLE_DEPTH, SHALLOW_DEPTH, capacity, touch_waiting, visit_nearest,
-};
+use super::wide_stack::{Lane, MIDDLE_DEPTH, SHALLOW_DEPTH, capacity, visit_nearest};
 use super::wide_tree::{Bvh4, Bvh4Node, WIDTH};
 use crate::structure::Nearest;
 use crate::{Primitive, Vector};
@@ -86,7 +84,6 @@ impl<P: Primitive> Bvh4<P> {
     /// The walk, with a stack of `CAP` entries (enough for the tree's depth).
     fn closest_walk<const CAP: usize>(&self, point: P::Point) -> Option<Nearest<P::Point>> {
         let slack = query_slack(point);
-        let touch = self.touch_ahead();
         let mut coords = [0.0; 3];
         for (axis, c) in coords.iter_mut().enumerate().take(P::Point::DIM) {
             *c = point.coord(axis);
@@ -126,9 +123,6 @@ impl<P: Primitive> Bvh4<P> {
             // The inner lanes still in reach of a best the leaves may have improved.
             let inner = (mask & !leaves) & within(&squared, reach_sq);
             if inner != 0 {
-                if touch {
-                    touch_waiting(&self.nodes, node, inner);
-                }
                 current = visit_nearest(node, inner, &squared, &mut stack, &mut len).child;
                 continue;
             }

@@ -19,9 +19,7 @@ use super::MAX_DEPTH;
 use glam::Vec4;
 
 use super::volume::{GROW, PreparedRay};
-use super::wide_stack::{
-    Lane, MIDDLE_DEPTH, SHALLOW_DEPTH, capacity, touch_waiting, visit_nearest,
-};
+use super::wide_stack::{Lane, MIDDLE_DEPTH, SHALLOW_DEPTH, capacity, visit_nearest};
 use super::wide_tree::{Bvh4, Bvh4Node, WIDTH};
 use crate::structure::{Hit, HitTracker};
 use crate::{Primitive, Ray, Vector};
@@ -125,7 +123,6 @@ impl<P: Primitive> Bvh4<P> {
     fn first_hit_walk<const CAP: usize>(&self, ray: &Ray<P::Point>, t_max: f32) -> Option<Hit> {
         let prepared = PreparedRay::new(ray);
         let lanes = LaneRay::new(&prepared);
-        let touch = self.touch_ahead();
         let mut best = HitTracker::new(t_max);
         // `best.limit()`, kept in a local so that the hot loop reads a register.
         let mut limit = t_max;
@@ -146,9 +143,6 @@ impl<P: Primitive> Bvh4<P> {
                     enter_lanes::<2>(node, &lanes, limit * GROW)
                 };
                 if mask != 0 {
-                    if touch {
-                        touch_waiting(&self.nodes, node, mask);
-                    }
                     current = visit_nearest(node, mask, &t_enter, &mut stack, &mut len);
                     continue;
                 }

@@ -191,12 +191,6 @@ impl<P: Primitive> Bvh4<P> {
         self.nodes.len() * size_of::<Bvh4Node>()
     }
 
-    /// Whether the walks load waiting children's nodes ahead (a tree too large for the
-    /// cache; see `wide_stack::touch_waiting`).
-    pub(super) fn touch_ahead(&self) -> bool {
-        self.node_bytes() > super::wide_stack::TOUCH_AHEAD_BYTES
-    }
-
     /// The average number of used lanes per node (at most [`WIDTH`]).
     pub fn mean_fill(&self) -> f32 {
         let used: usize = self
