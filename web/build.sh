@@ -12,25 +12,9 @@ cd "$(dirname "$0")/.."
 # Where cargo install puts binaries, in case the shell's PATH lacks it (a fresh machine).
 export PATH="${CARGO_HOME:-$HOME/.cargo}/bin:$PATH"
 
-if ! rustup target list --installed | grep -qx wasm32-unknown-unknown; then
-  rustup target add wasm32-unknown-unknown
-fi
-
-# The wasm-bindgen CLI must be exactly the version of the wasm-bindgen crate the app links.
-version=$(awk '
-  /^\[\[package\]\]/ { in_wb = 0 }
-  /^name = "wasm-bindgen"$/ { in_wb = 1 }
-  in_wb && /^version = / { gsub(/"/, "", $3); print $3; exit }
-' Cargo.lock)
-if [ -z "$version" ]; then
-  echo "web/build.sh: no wasm-bindgen package in Cargo.lock" >&2
-  exit 1
-fi
-if [ "$(wasm-bindgen --version 2>/dev/null || true)" != "wasm-bindgen $version" ]; then
-  echo "Installing wasm-bindgen-cli $version (about 3 minutes)..."
-  # No --locked: the CLI's own lock file pins a crate version some registries lack.
-  cargo install wasm-bindgen-cli --version "$version"
-fi
+# The wasm32 target and the wasm-bindgen CLI of the version in Cargo.lock.
+source web/wasm-toolchain.sh
+ensure_wasm_toolchain web/build.sh
 
 # Without the symbol names (the wasm's "name" section, 1.4 MB of the 11.7 MB): a panic's
 # message still names the file and line.

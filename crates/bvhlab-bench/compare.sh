@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # The side-by-side comparison of issue 7, in one command (from anywhere in the repository):
 #
-#   bash crates/bvhlab-bench/compare.sh            # everything: about 15-20 minutes
+#   bash crates/bvhlab-bench/compare.sh            # everything: about 35 minutes built
 #   bash crates/bvhlab-bench/compare.sh --quick    # a smoke run: the bunny, small workload
-#   bash crates/bvhlab-bench/compare.sh --native   # also a second native run with
+#   bash crates/bvhlab-bench/compare.sh --native   # also (about 25 minutes more) a native run with
 #                                                  # -C target-cpu=native (adds tinybvh's
 #                                                  # BVH8_CPU), into bench/native/
 #
@@ -40,19 +40,10 @@ mkdir -p bench
 rm -f bench/wasm.json
 
 # --- 1. WebAssembly ----------------------------------------------------------------------
-if ! rustup target list --installed | grep -qx wasm32-unknown-unknown; then
-  rustup target add wasm32-unknown-unknown
-fi
-# The wasm-bindgen CLI must be exactly the version of the wasm-bindgen crate in Cargo.lock.
-version=$(awk '
-  /^\[\[package\]\]/ { in_wb = 0 }
-  /^name = "wasm-bindgen"$/ { in_wb = 1 }
-  in_wb && /^version = / { gsub(/"/, "", $3); print $3; exit }
-' Cargo.lock)
-if [ "$(wasm-bindgen --version 2>/dev/null || true)" != "wasm-bindgen $version" ]; then
-  echo "Installing wasm-bindgen-cli $version (about 3 minutes)..."
-  cargo install wasm-bindgen-cli --version "$version"
-fi
+# The wasm32 target and the wasm-bindgen CLI of the version in Cargo.lock (shared with the
+# web build).
+source web/wasm-toolchain.sh
+ensure_wasm_toolchain compare.sh
 RUSTFLAGS="-C target-feature=+simd128" \
   cargo build -p bvhlab-bench-wasm --release --target wasm32-unknown-unknown
 pkg="$target/bench-wasm"
