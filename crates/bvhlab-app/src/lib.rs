@@ -1,52 +1,45 @@
-//! bvh-lab's interactive lab (the lecture in ../shared/LECTURE.md, in 2D): draw a scene, fit
-//! bounding volumes, build a spatial structure, and drag rays and query points through it.
+//! bvh-lab's interactive lab (the lecture in ../shared/LECTURE.md): draw a 2D scene or open a
+//! 3D mesh, fit bounding volumes, build a spatial structure, and drag rays and query points
+//! through it, step by step.
 //!
 //! The lab only consumes what the core reports: each structure's
 //! [`Outline`](bvhlab::Outline) to draw it, query answers and costs, and the observer's
 //! [`Event`](bvhlab::Event)s to show what a query visited, culled and pruned.
 //!
-//! - [`app`]: the state and the layout; [`panels`]: the controls; [`canvas`]: input and drawing.
-//! - [`scene`], [`presets`]: what is drawn; [`structures`]: one dispatch over the core's
-//!   structures; [`query`]: queries and their events; [`volumes`]: lecture §2 as data.
-//! - [`recording`], [`playback`]: a query or build recorded as events and folded at any step;
-//!   [`pseudocode`]: each algorithm's listing and the line of each event; [`stepper`],
-//!   [`build_view`]: the "Step through" panel; [`tree_view`], [`tree_panel`]: the tree diagrams;
-//!   [`lane`]: one structure and what is derived from it (two when comparing).
-//! - [`export`], [`export_ui`]: SVG and PNG for slides.
-//! - [`report`]: the lab's state for the page (the browser test and screen readers read it).
-//! - [`persist`]: scene files, share links and the state kept across reloads; `native`: the
-//!   native window's saved state and caught panics; [`embed`]: address parameters and the
-//!   scripting API for course pages.
+//! One model, changed only by actions, and views that read it:
+//! - [`model`]: the lab's state with no egui in it ([`model::Lab`]), changed only by
+//!   [`model::Lab::apply`] with an [`model::Action`]; the 2D and 3D halves are mirrors around
+//!   one generic half (structures, question, playback) over a segment or a triangle.
+//! - [`app`]: the frame ([`LabApp`]): input, panels and views say what they want as actions,
+//!   applied once the frame is drawn; [`ui_state`]: what the UI keeps that is not the lab's
+//!   (panels shown, hover, a drag in progress, caches).
+//! - [`panels`]: one file per panel, in the lecture's order; "Step through"; the tree
+//!   diagrams; the status line; export.
+//! - [`lab2d`] and [`lab3d`]: the two views, laid out alike (the widget, `input`, `draw`);
+//!   [`render3d`]: the wgpu renderer and the heat map; [`tree_diagram`]: the tree widget.
+//! - [`pseudocode`]: each algorithm's listing and the line of each event; [`paint`]: the
+//!   canvas's painter and the lab's colours.
+//! - [`persist`]: scene files, share links and the state kept across reloads; [`embed`]:
+//!   address parameters and the scripting API for course pages; [`report`]: the lab's state
+//!   for the page; [`export`]: SVG and PNG for slides; `native` and `web`: the two shells.
 
 pub mod app;
-pub mod build_view;
-pub mod canvas;
 pub mod embed;
 pub mod export;
-pub mod export_ui;
 pub mod frame_clock;
+pub mod lab2d;
 pub mod lab3d;
-pub mod lane;
+pub mod model;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod native;
 pub mod paint;
 pub mod panels;
 pub mod persist;
-pub mod playback;
-pub mod presets;
 pub mod pseudocode;
-pub mod query;
-pub mod recording;
+pub mod render3d;
 pub mod report;
-pub mod scene;
-pub mod stepper;
-pub mod structures;
-pub mod tool;
-pub mod tree_panel;
-pub mod tree_view;
-pub mod view;
-pub mod view3d;
-pub mod volumes;
+pub mod tree_diagram;
+pub mod ui_state;
 #[cfg(target_arch = "wasm32")]
 pub mod web;
 

@@ -32,9 +32,9 @@ impl NativeLab {
         let saved = path
             .as_deref()
             .and_then(|p| std::fs::read_to_string(p).ok());
-        let (app, _) = crate::persist::startup(None, None, saved.as_deref());
+        let (lab, _) = crate::persist::startup(None, None, saved.as_deref());
         Self {
-            app,
+            app: LabApp::new(lab),
             autosave: Autosave::new(saved.clone()),
             path,
             last_saved: saved,
@@ -71,7 +71,7 @@ impl NativeLab {
                 return;
             }
         }
-        match self.autosave.poll(&self.app, now) {
+        match self.autosave.poll(self.app.lab(), now) {
             AutosaveStep::Idle => {}
             AutosaveStep::Wait(seconds) => ui
                 .ctx()
@@ -88,23 +88,25 @@ impl NativeLab {
             .last_saved
             .as_deref()
             .filter(|_| self.panics_in_a_row < 2);
-        let (mut app, _) = crate::persist::startup(None, None, saved);
-        app.renderer = self.app.renderer.take();
-        app.render_state = self.app.render_state.take();
-        app.message = Some(if saved.is_some() {
-            format!(
-                "The lab hit an error in its code ({message}) and went back to your last saved \
+        let (lab, _) = crate::persist::startup(None, None, saved);
+        // The UI (and its renderer) stays; only the lab goes back.
+        self.app.replace_lab(lab);
+        let said = self
+            .app
+            .apply(crate::model::Action::SetMessage(Some(if saved.is_some() {
+                format!(
+                    "The lab hit an error in its code ({message}) and went back to your last saved \
                  state."
-            )
-        } else {
-            format!(
-                "The lab hit an error in its code ({message}) and started afresh (the saved \
+                )
+            } else {
+                format!(
+                    "The lab hit an error in its code ({message}) and started afresh (the saved \
                  state hit it too)."
-            )
-        });
+                )
+            })));
+        debug_assert!(said.is_ok(), "a message always applies");
         self.autosave = Autosave::new(self.last_saved.clone());
-        self.autosave.keep_current(&app);
-        self.app = app;
+        self.autosave.keep_current(self.app.lab());
     }
 
     /// Keeps `json` as the last saved state and writes it to the state file.

@@ -1,10 +1,10 @@
-//! Drawing world-space geometry on the canvas through the [`View`], and the lab's colours.
+//! Drawing world-space geometry on the canvas through the canvas's [`Screen`], and the lab's colours.
 
 use bvhlab::glam::Vec2;
 use bvhlab::{Aabb2, NodeShape, Obb2, Sphere2};
 use egui::{Color32, Shape, Stroke};
 
-use crate::view::View;
+use crate::lab2d::Screen;
 
 /// The lab's palette, one meaning per colour.
 pub mod colors {
@@ -43,19 +43,19 @@ pub mod colors {
 }
 
 /// Turns world geometry into egui shapes in screen space, collected so that the caller can
-/// paint them now or tessellate them once and reuse the mesh (see `canvas::StaticLayer`).
+/// paint them now or tessellate them once and reuse the mesh (see `lab2d::layer`).
 pub struct WorldPainter<'a> {
     /// The transform.
-    pub view: &'a View,
+    pub screen: &'a Screen,
     /// The shapes so far, in painting order.
     pub shapes: Vec<Shape>,
 }
 
 impl<'a> WorldPainter<'a> {
     /// A painter with no shapes yet.
-    pub fn new(view: &'a View) -> Self {
+    pub fn new(screen: &'a Screen) -> Self {
         Self {
-            view,
+            screen,
             shapes: Vec::new(),
         }
     }
@@ -67,25 +67,25 @@ impl<'a> WorldPainter<'a> {
 
     /// A segment.
     pub fn line(&mut self, a: Vec2, b: Vec2, stroke: Stroke) {
-        let seg = Shape::line_segment([self.view.to_screen(a), self.view.to_screen(b)], stroke);
+        let seg = Shape::line_segment([self.screen.to_screen(a), self.screen.to_screen(b)], stroke);
         self.add(seg);
     }
 
     /// A dot of `radius` screen points.
     pub fn dot(&mut self, p: Vec2, radius: f32, color: Color32) {
-        let dot = Shape::circle_filled(self.view.to_screen(p), radius, color);
+        let dot = Shape::circle_filled(self.screen.to_screen(p), radius, color);
         self.add(dot);
     }
 
     /// A closed polygon's outline.
     pub fn polygon(&mut self, points: &[Vec2], stroke: Stroke) {
-        let pts = points.iter().map(|&p| self.view.to_screen(p)).collect();
+        let pts = points.iter().map(|&p| self.screen.to_screen(p)).collect();
         self.add(Shape::closed_line(pts, stroke));
     }
 
     /// A filled convex polygon.
     pub fn convex_fill(&mut self, points: &[Vec2], fill: Color32) {
-        let pts = points.iter().map(|&p| self.view.to_screen(p)).collect();
+        let pts = points.iter().map(|&p| self.screen.to_screen(p)).collect();
         self.add(Shape::convex_polygon(pts, fill, Stroke::NONE));
     }
 
@@ -94,7 +94,8 @@ impl<'a> WorldPainter<'a> {
         if !(b.min.is_finite() && b.max.is_finite()) {
             return;
         }
-        let rect = egui::Rect::from_two_pos(self.view.to_screen(b.min), self.view.to_screen(b.max));
+        let rect =
+            egui::Rect::from_two_pos(self.screen.to_screen(b.min), self.screen.to_screen(b.max));
         self.add(Shape::rect_stroke(
             rect,
             0.0,
@@ -108,7 +109,8 @@ impl<'a> WorldPainter<'a> {
         if !(b.min.is_finite() && b.max.is_finite()) {
             return;
         }
-        let rect = egui::Rect::from_two_pos(self.view.to_screen(b.min), self.view.to_screen(b.max));
+        let rect =
+            egui::Rect::from_two_pos(self.screen.to_screen(b.min), self.screen.to_screen(b.max));
         self.add(Shape::rect_filled(rect, 0.0, fill));
     }
 
@@ -116,8 +118,8 @@ impl<'a> WorldPainter<'a> {
     pub fn sphere(&mut self, s: &Sphere2, stroke: Stroke) {
         if s.center.is_finite() && s.radius.is_finite() && s.radius >= 0.0 {
             let circle = Shape::circle_stroke(
-                self.view.to_screen(s.center),
-                self.view.screen_length(s.radius),
+                self.screen.to_screen(s.center),
+                self.screen.screen_length(s.radius),
                 stroke,
             );
             self.add(circle);
@@ -148,8 +150,8 @@ impl<'a> WorldPainter<'a> {
             NodeShape::Sphere(s) => {
                 if s.center.is_finite() && s.radius.is_finite() {
                     let disc = Shape::circle_filled(
-                        self.view.to_screen(s.center),
-                        self.view.screen_length(s.radius),
+                        self.screen.to_screen(s.center),
+                        self.screen.screen_length(s.radius),
                         fill,
                     );
                     self.add(disc);
@@ -161,14 +163,14 @@ impl<'a> WorldPainter<'a> {
 
     /// A circle of `radius` screen points around a world point.
     pub fn ring(&mut self, center: Vec2, radius: f32, stroke: Stroke) {
-        let ring = Shape::circle_stroke(self.view.to_screen(center), radius, stroke);
+        let ring = Shape::circle_stroke(self.screen.to_screen(center), radius, stroke);
         self.add(ring);
     }
 
     /// Text at a world point (needs the fonts, so only for shapes painted directly).
     pub fn text(&mut self, fonts: &egui::Painter, at: Vec2, text: &str, color: Color32) {
         let galley = fonts.layout_no_wrap(text.to_owned(), egui::FontId::proportional(13.0), color);
-        let pos = self.view.to_screen(at) - egui::vec2(0.0, galley.size().y);
+        let pos = self.screen.to_screen(at) - egui::vec2(0.0, galley.size().y);
         self.add(Shape::galley(pos, galley, color));
     }
 }

@@ -5,7 +5,11 @@ use std::fmt::Write as _;
 
 use serde::Serialize;
 
-use crate::app::LabApp;
+use crate::model::Lab;
+use crate::model::dimension::{Dimension, LabPrimitive};
+use crate::model::lane::Lane;
+use crate::model::recording::Answer;
+use crate::ui_state::UiState;
 
 /// The lab's state in brief.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
@@ -27,7 +31,7 @@ pub struct Report {
     /// Playback: what is stepped through and where it is, per lane.
     pub playback: Vec<PlaybackReport>,
     /// The 3D view, when it is shown.
-    pub three: Option<crate::lab3d::report::Report3d>,
+    pub three: Option<Report3d>,
     /// The status line's message, when there is one (a file or link that could not be
     /// opened, and what was kept).
     pub message: Option<String>,
@@ -127,9 +131,15 @@ pub struct PlaybackReport {
 }
 
 impl PlaybackReport {
-    fn of(lane: &crate::lane::Lane) -> Option<Self> {
+    /// The report of a lane in either half.
+    pub fn of<P: LabPrimitive>(lane: &Lane<P>) -> Option<Self> {
+        let dim = if P::DIMENSION == Dimension::Three {
+            3
+        } else {
+            2
+        };
         Self::of_recording(
-            lane.settings.kind.label(),
+            lane.settings.kind.label_in(dim),
             lane.settings.kind,
             lane.recording.as_ref(),
             lane.snapshot.as_ref(),
@@ -139,9 +149,9 @@ impl PlaybackReport {
     /// The report of a recording at its snapshot, in either dimension.
     pub fn of_recording<V: bvhlab::Vector>(
         structure: &str,
-        kind: crate::structures::StructureKind,
-        recording: Option<&Result<crate::recording::Recording<V>, String>>,
-        snapshot: Option<&crate::playback::Snapshot<V>>,
+        kind: crate::model::structures::StructureKind,
+        recording: Option<&Result<crate::model::recording::Recording<V>, String>>,
+        snapshot: Option<&crate::model::playback::Snapshot<V>>,
     ) -> Option<Self> {
         let structure = structure.to_owned();
         let rec = match recording? {
@@ -195,24 +205,23 @@ impl PlaybackReport {
 }
 
 impl Report {
-    /// The report of the lab's current state.
-    pub fn of(app: &LabApp) -> Self {
-        let r = app.view.rect;
+    /// The report of the lab's state, as the UI shows it.
+    pub fn of(lab: &Lab, ui: &UiState) -> Self {
+        let two = lab.two();
+        let r = ui.canvas.screen(two).rect;
+        let lane = &two.half.lane;
+        let three = lab.dimension() == Dimension::Three;
         Self {
             ready: true,
-            renderer: app.renderer.clone(),
-            message: app.message.clone(),
+            renderer: ui.renderer.clone(),
+            message: lab.message().map(str::to_owned),
             canvas: [r.min.x, r.min.y, r.max.x, r.max.y],
             scene: SceneReport {
-                shapes: app.scene.shapes().len(),
-                primitives: app
-                    .lane
-                    .built
-                    .as_ref()
-                    .map_or(0, |b| b.prims.segments.len()),
+                shapes: two.scene.shapes().len(),
+                primitives: two.prims().segments.len(),
             },
-            structure: app.lane.settings.kind.label().to_owned(),
-            query: app.lane.ray_outcome.as_ref().map(|o| RayReport {
+            structure: lane.settings.kind.label().to_owned(),
+            query: lane.ray_outcome.as_ref().map(|o| RayReport {
                 kind: "ray",
                 ray: [
                     o.ray.origin().x,
@@ -234,7 +243,7 @@ impl Report {
                 brute_force_tests: o.brute_cost.prim_tests,
                 agrees: o.agrees(),
             }),
-            nearest: app.lane.point_outcome.as_ref().map(|o| NearestReport {
+            nearest: lane.point_outcome.as_ref().map(|o| NearestReport {
                 point: [o.point.x, o.point.y],
                 nearest: o
                     .nearest
@@ -246,23 +255,18 @@ impl Report {
                 brute_force_tests: o.brute_cost.prim_tests,
                 agrees: o.agrees(),
             }),
-            playback: if app.dimension == crate::app::Dimension::Three {
-                let lab = &app.lab3d;
-                PlaybackReport::of_recording(
-                    lab.settings.kind.label_in(3),
-                    lab.settings.kind,
-                    lab.recording.as_ref(),
-                    lab.snapshot.as_ref(),
-                )
-                .into_iter()
-                .collect()
+            playback: if three {
+                lab.three()
+                    .half
+                    .lanes()
+                    .filter_map(PlaybackReport::of)
+                    .collect()
             } else {
-                app.lanes().filter_map(PlaybackReport::of).collect()
+                two.half.lanes().filter_map(PlaybackReport::of).collect()
             },
-            three: (app.dimension == crate::app::Dimension::Three)
-                .then(|| crate::lab3d::report::Report3d::of(&app.lab3d)),
-            frame_ms: app.clock.median_ms(),
-            cpu_ms: app.clock.median_cpu_ms(),
+            three: three.then(|| Report3d::of(lab, ui)),
+            frame_ms: ui.clock.median_ms(),
+            cpu_ms: ui.clock.median_cpu_ms(),
         }
     }
 
@@ -300,5 +304,97 @@ impl Report {
             let _ = write!(s, " Nearest primitive {prim} at distance {d:.3}.");
         }
         s
+    }
+}
+
+/// The 3D view's state in brief.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct Report3d {
+    /// The mesh's name, once loaded.
+    pub mesh: Option<String>,
+    /// Its triangles.
+    pub triangles: usize,
+    /// The structure.
+    pub structure: String,
+    /// A build under way: how far it is, 0 to 1.
+    pub building: Option<f32>,
+    /// How long the finished build took, in milliseconds.
+    pub build_ms: Option<f64>,
+    /// The view's area on the page, in points: `[x0, y0, x1, y1]`.
+    pub view: [f32; 4],
+    /// The ray: origin and direction.
+    pub ray: Option<[f32; 6]>,
+    /// The first hit: triangle, t, point.
+    pub hit: Option<Hit3dReport>,
+    /// The query point.
+    pub point: Option<[f32; 3]>,
+    /// Whether the recorded answer equals brute force's.
+    pub agrees: Option<bool>,
+    /// The recorded query's nodes, bound tests and triangle tests.
+    pub cost: Option<[u64; 3]>,
+    /// Brute force's triangle tests.
+    pub brute_force_tests: Option<u64>,
+    /// The last message (a refused file, a structure not offered for this size).
+    pub message: Option<String>,
+    /// The heat map, when shown: "gpu" or "cpu", its progress and its largest count.
+    pub heat_map: Option<HeatReport>,
+}
+
+/// A first hit in 3D.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Hit3dReport {
+    /// The triangle's index.
+    pub triangle: usize,
+    /// The ray parameter.
+    pub t: f32,
+    /// The hit point.
+    pub point: [f32; 3],
+}
+
+/// The heat map's state.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct HeatReport {
+    /// Where it is computed: "gpu" or "cpu".
+    pub device: String,
+    /// How far it is, 0 to 1.
+    pub progress: f32,
+    /// The largest count in the image.
+    pub max: u32,
+}
+
+impl Report3d {
+    /// The report of the 3D half's state.
+    pub fn of(lab: &Lab, ui: &UiState) -> Self {
+        let three = lab.three();
+        let lane = &three.half.lane;
+        let rec = lane.recorded();
+        let hit = rec.and_then(|r| match (&r.answer, r.question.ray) {
+            (Answer::Hit(Some(h)), Some(ray)) => Some(Hit3dReport {
+                triangle: h.prim,
+                t: h.t,
+                point: ray.at(h.t).to_array(),
+            }),
+            _ => None,
+        });
+        let view = ui.view3d.rect;
+        Self {
+            mesh: three.mesh.as_ref().map(|m| m.name.clone()),
+            triangles: three.triangles().len(),
+            structure: lane.settings.kind.label_in(3).to_owned(),
+            building: lane.building(),
+            build_ms: lane.structure.as_ref().map(|b| b.build_ms),
+            view: [view.min.x, view.min.y, view.max.x, view.max.y],
+            ray: three.ray.map(|r| {
+                let (o, d) = (r.origin(), r.dir());
+                [o.x, o.y, o.z, d.x, d.y, d.z]
+            }),
+            hit,
+            point: three.point.map(|p| p.to_array()),
+            agrees: rec.map(crate::model::recording::Recording::agrees),
+            cost: rec.map(|r| [r.cost.nodes_visited, r.cost.bound_tests, r.cost.prim_tests]),
+            brute_force_tests: rec.map(|r| r.brute_cost.prim_tests),
+            message: three.message.clone(),
+            heat_map: ui.view3d.heat.report(three.heat.on),
+        }
     }
 }

@@ -262,9 +262,9 @@ impl eframe::App for WebLab {
             crate::embed::browser::announce(&self.origins, r#"{"bvhlab":"ready"}"#);
         }
         if std::mem::take(&mut self.hold) {
-            self.autosave.keep_current(&self.app);
+            self.autosave.keep_current(self.app.lab());
         }
-        match self.autosave.poll(&self.app, now) {
+        match self.autosave.poll(self.app.lab(), now) {
             AutosaveStep::Idle => {}
             AutosaveStep::Wait(seconds) => {
                 ui.ctx()
@@ -288,11 +288,12 @@ impl WebLab {
         self.autosave.write_failed();
         if !self.storage_failed {
             self.storage_failed = true;
-            self.app.message = Some(
+            let said = self.app.apply(crate::model::Action::SetMessage(Some(
                 "This browser did not keep the lab's state (storage full or off): export the \
                  scene to keep it."
                     .to_owned(),
-            );
+            )));
+            debug_assert!(said.is_ok(), "a message always applies");
         }
     }
 }

@@ -6,10 +6,11 @@ use bvhlab::Ray3;
 use bvhlab::glam::{Vec2, Vec3};
 use serde::Deserialize;
 
-use crate::app::{Dimension, LabApp, RayHandles};
-use crate::lab3d::mesh::MeshSource;
+use crate::model::lab2d::RayHandles;
+use crate::model::mesh::MeshSource;
+use crate::model::presets::Preset;
+use crate::model::{Action, Action2d, Action3d, Dimension, HalfAction, Lab, PlaybackAction};
 use crate::persist::{MAX_FILE_BYTES, SavedState, StructureName, TaskName};
-use crate::presets::Preset;
 
 /// A command, as the page sends it: `{"type": "set-ray", "origin": [0, 0], "direction": [1, 0]}`.
 #[derive(Clone, Debug, PartialEq, Deserialize)]
@@ -106,77 +107,61 @@ impl Command {
         )
     }
 
-    /// Applies the command to `app`. Returns the extra reply as JSON text (`ExportScene`'s
-    /// scene).
+    /// What the command asks of `lab`, as actions; and the extra reply as JSON text
+    /// (`ExportScene`'s scene).
     ///
     /// # Errors
-    /// Why it was refused; the lab is then unchanged.
+    /// Why it was refused (before anything is applied).
     ///
     /// # Panics
     /// On [`Command::PanicForTest`] when `debug_panic` is set: that is its purpose.
-    pub fn apply(self, app: &mut LabApp, debug_panic: bool) -> Result<Option<String>, String> {
-        let three = app.dimension == Dimension::Three;
+    pub fn actions(
+        self,
+        lab: &Lab,
+        debug_panic: bool,
+    ) -> Result<(Vec<Action>, Option<String>), String> {
+        let three = lab.dimension() == Dimension::Three;
+        let one = |a: Action| Ok((vec![a], None));
         match self {
             Self::LoadScene { scene } => {
                 let text = serde_json::to_vec(&scene).map_err(|e| e.to_string())?;
-                crate::persist::from_file(&text)?.apply(app)?;
+                one(crate::persist::from_file(&text)?.apply()?)
             }
             Self::LoadPreset { preset } => {
                 let p = Preset::from_slug(&preset)
                     .ok_or_else(|| format!("the lab has no preset \"{preset}\""))?;
-                app.load_preset(p);
-                app.dimension = Dimension::Two;
+                one(Action2d::LoadPreset(p).into())
             }
-            Self::LoadMesh { mesh } => {
-                if !bvhlab_meshio::builtin::list()
-                    .iter()
-                    .any(|b| b.slug == mesh)
-                {
-                    return Err(format!("the lab has no built-in mesh \"{mesh}\""));
-                }
-                app.lab3d.open(MeshSource::Builtin(mesh));
-                app.dimension = Dimension::Three;
-            }
-            Self::Show { view } => {
-                app.dimension = match view.as_str() {
-                    "2d" => Dimension::Two,
-                    "3d" => Dimension::Three,
-                    _ => return Err(format!("view is \"{view}\"; it must be \"2d\" or \"3d\"")),
-                };
-            }
+            Self::LoadMesh { mesh } => one(Action3d::OpenMesh(MeshSource::Builtin(mesh)).into()),
+            Self::Show { view } => one(Action::Show(match view.as_str() {
+                "2d" => Dimension::Two,
+                "3d" => Dimension::Three,
+                _ => return Err(format!("view is \"{view}\"; it must be \"2d\" or \"3d\"")),
+            })),
             Self::SetStructure { structure } => {
-                let settings = if three {
-                    &mut app.lab3d.settings
+                let mut settings = if three {
+                    lab.three().half.lane.settings
                 } else {
-                    &mut app.lane.settings
+                    lab.two().half.lane.settings
                 };
                 settings.kind = structure.into();
+                one(HalfAction::SetStructure(settings).into())
             }
-            Self::SetTask { task } => app.task = task.into(),
-            Self::SetRay { origin, direction } => set_ray(app, &origin, &direction)?,
-            Self::SetPoint { point } => set_point(app, &point)?,
+            Self::SetTask { task } => one(HalfAction::SetTask(task.into()).into()),
+            Self::SetRay { origin, direction } => one(set_ray(three, &origin, &direction)?),
+            Self::SetPoint { point } => one(set_point(three, &point)?),
             Self::Step { by } => {
-                let len = app.steps();
                 let by =
                     isize::try_from(by).unwrap_or(if by < 0 { isize::MIN } else { isize::MAX });
-                app.playback.step_by(by, len);
+                one(PlaybackAction::StepBy(by).into())
             }
-            Self::GoToStep { step } => {
-                let len = app.steps();
-                app.playback.playing = false;
-                app.playback.go(step, len);
-            }
-            Self::Play { playing } => {
-                if app.playback.playing != playing {
-                    let len = app.steps();
-                    app.playback.toggle(len);
-                }
-            }
-            Self::Report => {}
+            Self::GoToStep { step } => one(PlaybackAction::GoTo(step).into()),
+            Self::Play { playing } => one(PlaybackAction::Play(playing).into()),
+            Self::Report => Ok((Vec::new(), None)),
             Self::ExportScene => {
-                let scene = serde_json::to_string(&SavedState::capture_full(app))
+                let scene = serde_json::to_string(&SavedState::capture_full(lab))
                     .map_err(|e| e.to_string())?;
-                return Ok(Some(scene));
+                Ok((Vec::new(), Some(scene)))
             }
             Self::PanicForTest => {
                 if !debug_panic {
@@ -191,21 +176,15 @@ impl Command {
                 }
             }
         }
-        Ok(None)
     }
 }
 
 /// The ray of the half shown.
-fn set_ray(app: &mut LabApp, origin: &[f64], direction: &[f64]) -> Result<(), String> {
-    if app.dimension == Dimension::Three {
+fn set_ray(three: bool, origin: &[f64], direction: &[f64]) -> Result<Action, String> {
+    if three {
         let ray = Ray3::new(vec3("origin", origin)?, vec3("direction", direction)?)
             .map_err(|e| format!("the ray: {e}"))?;
-        // A mesh still loading takes the ray once it has loaded.
-        if app.lab3d.pending.is_some() {
-            app.lab3d.placement.get_or_insert_default().ray = Some(ray);
-        } else {
-            app.lab3d.ray = Some(ray);
-        }
+        Ok(Action3d::SetRay(Some(ray)).into())
     } else {
         let origin = vec2("origin", origin)?;
         let handles = RayHandles {
@@ -213,26 +192,17 @@ fn set_ray(app: &mut LabApp, origin: &[f64], direction: &[f64]) -> Result<(), St
             target: origin + vec2("direction", direction)?,
         };
         handles.ray().map_err(|e| format!("the ray: {e}"))?;
-        app.ray = Some(handles);
+        Ok(Action2d::SetRay(Some(handles)).into())
     }
-    app.ask_about_ray();
-    Ok(())
 }
 
 /// The query point of the half shown.
-fn set_point(app: &mut LabApp, point: &[f64]) -> Result<(), String> {
-    if app.dimension == Dimension::Three {
-        let p = vec3("point", point)?;
-        if app.lab3d.pending.is_some() {
-            app.lab3d.placement.get_or_insert_default().point = Some(p);
-        } else {
-            app.lab3d.point = Some(p);
-        }
+fn set_point(three: bool, point: &[f64]) -> Result<Action, String> {
+    Ok(if three {
+        Action3d::SetPoint(Some(vec3("point", point)?)).into()
     } else {
-        app.point = Some(vec2("point", point)?);
-    }
-    app.ask_about_point();
-    Ok(())
+        Action2d::SetPoint(Some(vec2("point", point)?)).into()
+    })
 }
 
 fn vec2(what: &str, n: &[f64]) -> Result<Vec2, String> {

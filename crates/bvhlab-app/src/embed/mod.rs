@@ -23,7 +23,8 @@ use std::collections::VecDeque;
 pub use command::Command;
 pub use params::{PARAMETERS, StartParams};
 
-use crate::app::{Dimension, LabApp};
+use crate::LabApp;
+use crate::model::Lab;
 
 /// The longest command id echoed, in characters of JSON.
 const MAX_ID_CHARS: usize = 256;
@@ -52,10 +53,10 @@ pub fn start(fragment: Option<&str>, params: &StartParams, saved: Option<&str>) 
     let link = fragment.filter(|f| f.trim().trim_start_matches('#').starts_with("s="));
     let saved = saved.filter(|_| !params.fresh);
     let mut problems = params.problems.clone();
-    let (mut app, message) = if link.is_some() || saved.is_some() {
+    let (mut lab, message) = if link.is_some() || saved.is_some() {
         crate::persist::startup(link, None, saved)
     } else {
-        (LabApp::default(), None)
+        (Lab::default(), None)
     };
     let failed = message.is_some();
     if let Some(m) = message {
@@ -63,13 +64,17 @@ pub fn start(fragment: Option<&str>, params: &StartParams, saved: Option<&str>) 
     }
     // The parameters choose the starting state only when nothing else did.
     if link.is_none() && (saved.is_none() || failed) {
-        let mut fresh = LabApp::default();
+        let mut fresh = Lab::default();
         problems.extend(params.apply(&mut fresh));
-        app = fresh;
+        lab = fresh;
     }
     let message = (!problems.is_empty()).then(|| sentences(&problems));
     if message.is_some() {
-        app.message.clone_from(&message);
+        let _ = lab.apply(crate::model::Action::SetMessage(message.clone()));
+    }
+    let mut app = LabApp::new(lab);
+    if let Some(panels) = params.panels {
+        app.ui.panels = panels;
     }
     Start {
         app,
@@ -170,20 +175,20 @@ impl<T> Scripting<T> {
             let ready = request
                 .command
                 .as_ref()
-                .map_or(true, |c| !c.needs_idle() || !busy(app));
+                .map_or(true, |c| !c.needs_idle() || !app.lab().busy());
             if !ready {
                 break;
             }
             let Some(request) = self.queue.pop_front() else {
                 break;
             };
-            if request.command.as_ref().is_ok_and(Command::needs_idle) {
-                // Playback counts the steps of the recording as it is now.
-                app.refresh();
-            }
-            let outcome = request
-                .command
-                .and_then(|command| command.apply(app, self.debug_panic));
+            let outcome = request.command.and_then(|command| {
+                let (actions, extra) = command.actions(app.lab(), self.debug_panic)?;
+                for action in actions {
+                    app.apply(action)?;
+                }
+                Ok(extra)
+            });
             self.waiting.push(Waiting {
                 reply_to: request.reply_to,
                 id: request.id,
@@ -197,7 +202,7 @@ impl<T> Scripting<T> {
     /// of them when the lab is idle, only refusals while it builds, and anything that waited
     /// longer than [`REPLY_TIMEOUT`]. Each is the reply's JSON text.
     pub fn after_frame(&mut self, app: &LabApp, now: f64) -> Vec<(T, String)> {
-        let idle = !busy(app);
+        let idle = !app.lab().busy();
         let (ready, waiting): (Vec<_>, Vec<_>) = std::mem::take(&mut self.waiting)
             .into_iter()
             .partition(|w| idle || w.outcome.is_err() || now - w.since > REPLY_TIMEOUT);
@@ -216,11 +221,6 @@ impl<T> Scripting<T> {
             })
             .collect()
     }
-}
-
-/// Whether the lab is loading or building (3D builds run over several frames).
-fn busy(app: &LabApp) -> bool {
-    app.dimension == Dimension::Three && app.lab3d.busy()
 }
 
 /// A reply's JSON text. The report is written as the page's `data-report` has it (numbers as

@@ -6,11 +6,12 @@
 use bvhlab::Ray3;
 use bvhlab::glam::{Vec2, Vec3};
 
-use crate::app::{Dimension, LabApp, RayHandles};
-use crate::lab3d::Placement3d;
-use crate::lab3d::mesh::MeshSource;
+use crate::model::lab2d::RayHandles;
+use crate::model::mesh::MeshSource;
+use crate::model::presets::Preset;
+use crate::model::{Action, Action2d, Action3d, Dimension, HalfAction, Lab, PlaybackAction};
 use crate::persist::{STORAGE_KEY, StructureName, TaskName};
-use crate::presets::Preset;
+pub use crate::ui_state::PanelsShown as Panels;
 
 /// The parameters the lab reads, with what each does (the README's table is this list).
 pub const PARAMETERS: [(&str, &str); 11] = [
@@ -86,21 +87,10 @@ pub struct StartParams {
     pub problems: Vec<String>,
 }
 
-/// The side panels an embedding page asks for.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[allow(clippy::struct_excessive_bools)] // independent switches
-pub struct Panels {
-    /// The controls (left).
-    pub controls: bool,
-    /// "Step through" (right).
-    pub stepper: bool,
-    /// The tree diagram (below the 2D canvas).
-    pub tree: bool,
-}
-
-impl Panels {
-    fn parse(value: &str) -> Result<Self, String> {
-        let mut panels = Self {
+/// The panels named in `panels=`.
+fn parse_panels(value: &str) -> Result<Panels, String> {
+    {
+        let mut panels = Panels {
             controls: false,
             stepper: false,
             tree: false,
@@ -187,7 +177,7 @@ impl StartParams {
                     )
                 })?);
             }
-            "panels" => self.panels = Some(Panels::parse(value)?),
+            "panels" => self.panels = Some(parse_panels(value)?),
             "lab" => self.lab = Some(value.to_owned()),
             "origin" => self.origins.push(origin(value)?),
             "fresh" => self.fresh = value == "1" || value == "true",
@@ -241,56 +231,54 @@ impl StartParams {
         }
     }
 
-    /// Puts what the parameters ask for into `app` (a fresh lab), and returns what could not
-    /// be used, one sentence each.
-    pub fn apply(&self, app: &mut LabApp) -> Vec<String> {
+    /// Puts what the parameters ask for into `lab` (a fresh one), and returns what could
+    /// not be used, one sentence each. (The panels are the UI's: the caller shows them.)
+    pub fn apply(&self, lab: &mut Lab) -> Vec<String> {
         let mut problems = Vec::new();
+        let apply = |lab: &mut Lab, action: Action, problems: &mut Vec<String>| {
+            if let Err(e) = lab.apply(action) {
+                problems.push(format!("the address: {e}"));
+            }
+        };
         if let Some(preset) = self.preset {
-            app.load_preset(preset);
+            apply(lab, Action2d::LoadPreset(preset).into(), &mut problems);
         }
         if let Some(slug) = &self.mesh {
-            app.dimension = Dimension::Three;
-            app.lab3d.open(MeshSource::Builtin(slug.clone()));
+            apply(
+                lab,
+                Action3d::OpenMesh(MeshSource::Builtin(slug.clone())).into(),
+                &mut problems,
+            );
         }
-        let three = app.dimension == Dimension::Three;
-        if let Some(panels) = self.panels {
-            app.show_controls = panels.controls;
-            app.show_stepper = panels.stepper;
-            app.show_tree = panels.tree;
-        }
+        let three = lab.dimension() == Dimension::Three;
         if let Some(structure) = self.structure {
-            let kind = structure.into();
-            if three {
-                app.lab3d.settings.kind = kind;
+            let mut settings = if three {
+                lab.three().half.lane.settings
             } else {
-                app.lane.settings.kind = kind;
-            }
-        }
-        if let Some(task) = self.task {
-            app.task = task.into();
-        }
-        let mut placement = Placement3d::default();
-        if let Some(numbers) = &self.ray {
-            let applied = if three {
-                ray3(numbers).map(|r| placement.ray = Some(r))
-            } else {
-                ray2(numbers).map(|r| app.ray = Some(r))
+                lab.two().half.lane.settings
             };
-            problems.extend(applied.err());
-            if self.task.is_none() {
-                app.ask_about_ray();
+            settings.kind = structure.into();
+            apply(
+                lab,
+                HalfAction::SetStructure(settings).into(),
+                &mut problems,
+            );
+        }
+        if let Some(numbers) = &self.ray {
+            let action = if three {
+                ray3(numbers).map(|r| Action3d::SetRay(Some(r)).into())
+            } else {
+                ray2(numbers).map(|r| Action2d::SetRay(Some(r)).into())
+            };
+            match action {
+                Ok(action) => apply(lab, action, &mut problems),
+                Err(e) => problems.push(e),
             }
         }
         if let Some(numbers) = &self.point {
-            let applied = match (three, numbers.as_slice()) {
-                (false, &[x, y]) => {
-                    app.point = Some(Vec2::new(x, y));
-                    Ok(())
-                }
-                (true, &[x, y, z]) => {
-                    placement.point = Some(Vec3::new(x, y, z));
-                    Ok(())
-                }
+            let action = match (three, numbers.as_slice()) {
+                (false, &[x, y]) => Ok(Action2d::SetPoint(Some(Vec2::new(x, y))).into()),
+                (true, &[x, y, z]) => Ok(Action3d::SetPoint(Some(Vec3::new(x, y, z))).into()),
                 _ => Err(format!(
                     "the address's point has {} numbers; the {} view takes {}",
                     numbers.len(),
@@ -298,17 +286,27 @@ impl StartParams {
                     if three { 3 } else { 2 }
                 )),
             };
-            problems.extend(applied.err());
-            if self.task.is_none() && self.ray.is_none() {
-                app.ask_about_point();
+            match action {
+                // With a ray too, the ray's task stays (the point is placed for later).
+                Ok(action) => {
+                    let task = if three {
+                        lab.three().half.task
+                    } else {
+                        lab.two().half.task
+                    };
+                    apply(lab, action, &mut problems);
+                    if self.ray.is_some() {
+                        apply(lab, HalfAction::SetTask(task).into(), &mut problems);
+                    }
+                }
+                Err(e) => problems.push(e),
             }
         }
-        if three && placement != Placement3d::default() {
-            app.lab3d.placement = Some(placement);
+        if let Some(task) = self.task {
+            apply(lab, HalfAction::SetTask(task.into()).into(), &mut problems);
         }
         if let Some(step) = self.step {
-            app.playback.step = step;
-            app.playback.at_end = false;
+            apply(lab, PlaybackAction::Hold(step).into(), &mut problems);
         }
         problems
     }

@@ -5,16 +5,18 @@
 
 use bvhlab::glam::Vec3;
 use bvhlab::structure::PrimitiveResult;
-use bvhlab::{NodeId, Primitive};
+use bvhlab::{NodeId, Primitive, Triangle3};
 use egui::Color32;
 
 use super::input::Handle;
 use super::wire::{self, Segment};
-use super::{Lab3d, build::Built3d};
+use crate::model::build_job::Structure;
+use crate::model::lab3d::Lab3d;
+use crate::model::lane::Lane;
+use crate::model::outcome::NodeMark;
+use crate::model::playback::Snapshot;
 use crate::paint::colors;
-use crate::playback::Snapshot;
 use crate::pseudocode::Task;
-use crate::query::NodeMark;
 
 /// The most nodes of a level drawn (past it, the level is cut and the panel says so).
 pub const LEVEL_CAP: usize = 4_096;
@@ -69,6 +71,9 @@ pub fn rgba(c: Color32, alpha: f32) -> [f32; 4] {
     ]
 }
 
+/// The structure a lane built on the mesh as it is.
+type Built3d = Structure<Triangle3>;
+
 impl Draw3d {
     fn node(&mut self, built: &Built3d, id: NodeId, color: [f32; 4], width: f32) {
         if let Some(view) = built.node(id) {
@@ -77,14 +82,16 @@ impl Draw3d {
     }
 }
 
-/// The draw list for the lab's state.
-pub fn draw(lab: &Lab3d, task: Task) -> Draw3d {
+/// The draw list of lane `index` (1: the comparison) in a view of `rect`.
+pub fn draw(lab: &Lab3d, index: usize, rect: egui::Rect, gizmo_shown: bool) -> Draw3d {
     let mut d = Draw3d::default();
-    let (Some(mesh), Some(built)) = (&lab.mesh, &lab.built) else {
+    let task = lab.half.task;
+    let lane = lab.half.lane_at(index);
+    let (Some(mesh), Some(built)) = (&lab.mesh, lane.current(lab.revision())) else {
         return d;
     };
     let size = mesh.size();
-    let snap = lab.snapshot.as_ref();
+    let snap = lane.snapshot.as_ref();
     let building = task == Task::Build && snap.is_some();
     if lab.display.structure {
         structure_level(lab, built, snap.filter(|_| building), &mut d);
@@ -98,9 +105,11 @@ pub fn draw(lab: &Lab3d, task: Task) -> Draw3d {
         tested(snap, &mut d);
     }
     if !building {
-        query_shapes(lab, task, size, &mut d);
+        query_shapes(lab, lane, task, size, &mut d);
     }
-    gizmo(lab, &mut d);
+    if gizmo_shown {
+        gizmo(lab, rect, &mut d);
+    }
     d
 }
 
@@ -223,12 +232,11 @@ fn build_state(lab: &Lab3d, built: &Built3d, snap: &Snapshot<Vec3>, d: &mut Draw
 }
 
 /// The ray with its hit and normal; the query point with its closest points or range.
-fn query_shapes(lab: &Lab3d, task: Task, size: f32, d: &mut Draw3d) {
-    let answer = lab.recorded();
+fn query_shapes(lab: &Lab3d, lane: &Lane<Triangle3>, task: Task, size: f32, d: &mut Draw3d) {
     let ray_task = matches!(task, Task::FirstHit | Task::AnyHit | Task::AllHits);
     if ray_task && let Some(ray) = lab.ray {
         let unit = ray.dir().length().max(1e-12);
-        let best_t = lab
+        let best_t = lane
             .snapshot
             .as_ref()
             .and_then(|s| s.best.first().map(|b| b.1));
@@ -241,7 +249,7 @@ fn query_shapes(lab: &Lab3d, task: Task, size: f32, d: &mut Draw3d) {
         });
         if let (Some(t), Some((prim, _))) = (
             best_t,
-            lab.snapshot.as_ref().and_then(|s| s.best.first().copied()),
+            lane.snapshot.as_ref().and_then(|s| s.best.first().copied()),
         ) {
             let hit = ray.origin() + ray.dir() * t;
             d.dots.push(Dot {
@@ -274,7 +282,7 @@ fn query_shapes(lab: &Lab3d, task: Task, size: f32, d: &mut Draw3d) {
             for plane in [(Vec3::X, Vec3::Y), (Vec3::Y, Vec3::Z), (Vec3::Z, Vec3::X)] {
                 wire::circle(
                     point,
-                    lab.radius,
+                    lab.half.radius,
                     plane,
                     rgba(colors::QUERY, 0.8),
                     1.5,
@@ -283,9 +291,8 @@ fn query_shapes(lab: &Lab3d, task: Task, size: f32, d: &mut Draw3d) {
             }
         }
         if task == Task::Nearest
-            && let Some(snap) = &lab.snapshot
+            && let Some(snap) = &lane.snapshot
         {
-            let _ = answer;
             for &(prim, _) in &snap.best {
                 if let Some(tri) = lab.triangle(prim) {
                     let closest = tri.closest_point(point);
@@ -308,8 +315,8 @@ fn query_shapes(lab: &Lab3d, task: Task, size: f32, d: &mut Draw3d) {
 
 /// The gizmo's handles: the ray's origin and direction, or the point, with axis arrows to
 /// drag along.
-fn gizmo(lab: &Lab3d, d: &mut Draw3d) {
-    for (handle, at) in super::input::handles(lab) {
+fn gizmo(lab: &Lab3d, rect: egui::Rect, d: &mut Draw3d) {
+    for (handle, at) in super::input::handles(lab, rect) {
         let color = match handle {
             Handle::Axis(axis, _) => [colors::SLAB_X, colors::VISITED, colors::SLAB_Y][axis],
             Handle::RayDirection => colors::SELECTED,

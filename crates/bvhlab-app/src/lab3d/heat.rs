@@ -6,16 +6,17 @@
 //! otherwise (WebGL2, the other structures, or when the student picks it) the CPU asks the
 //! core ray by ray, a slice of rows per frame, and the image fills in as it goes.
 
-use bvhlab::{QueryCost, Ray3};
+use bvhlab::{QueryCost, Ray3, Triangle3};
 use egui::{Color32, TextureHandle, TextureOptions};
 use web_time::Instant;
 
-use super::Lab3d;
-use super::report::HeatReport;
-use crate::app::LabApp;
-use crate::structures::Built;
-use crate::view3d::camera::OrbitCamera;
-use crate::view3d::heatmap::{CpuHeatMap, GpuHeatMap, Metric, gpu_heatmap_supported, legend};
+use crate::model::build_job::Structure;
+use crate::model::heat::{Device, Metric};
+use crate::model::orbit_camera::OrbitCamera;
+use crate::model::structures::{BuildSettings, Built};
+use crate::render3d::heatmap::{CpuHeatMap, GpuHeatMap, gpu_heatmap_supported};
+use crate::report::HeatReport;
+use crate::ui_state::Cx;
 
 /// Frames spent reading the GPU image's largest count back after a trace.
 const SETTLE_FRAMES: u32 = 30;
@@ -23,41 +24,27 @@ const SETTLE_FRAMES: u32 = 30;
 /// Milliseconds of CPU tracing per frame.
 const CPU_BUDGET_MS: f64 = 15.0;
 
-/// Where the map is computed.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum Device {
-    /// The GPU when it can, else the CPU.
-    #[default]
-    Auto,
-    /// Always the CPU.
-    Cpu,
-}
-
 /// What a map depends on: when any of it changes, the map is traced again.
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Key {
     camera: OrbitCamera,
     size: [u32; 2],
-    structure: (u64, crate::structures::BuildSettings),
+    structure: (u64, BuildSettings),
     metric: Metric,
     gpu: bool,
 }
 
-/// The heat map's state.
+/// The heat map's tracing and images (its settings are the lab's:
+/// [`HeatSettings`](crate::model::heat::HeatSettings)).
 #[derive(Default)]
-pub struct Heat {
-    /// Whether it is shown.
-    pub on: bool,
-    /// What a pixel counts.
-    pub metric: Metric,
-    /// Where it is computed.
-    pub device: Device,
+pub struct HeatMap {
     key: Option<Key>,
+    metric: Metric,
     cpu: Option<CpuHeatMap>,
     cpu_texture: Option<TextureHandle>,
     gpu: Option<GpuHeatMap>,
     /// The structure the GPU holds: (mesh revision, settings).
-    gpu_tree: Option<(u64, crate::structures::BuildSettings)>,
+    gpu_tree: Option<(u64, BuildSettings)>,
     gpu_texture: Option<egui::TextureId>,
     gpu_error: Option<String>,
     /// The GPU image's largest count, once read back (for the legend and the report).
@@ -68,97 +55,105 @@ pub struct Heat {
     shown_gpu: bool,
 }
 
-impl Lab3d {
-    /// The heat map's report, when it is on.
-    pub fn heat_report(&self) -> Option<HeatReport> {
-        let heat = &self.heat;
-        if !heat.on {
+impl HeatMap {
+    /// The map's report, when it is `on`.
+    pub fn report(&self, on: bool) -> Option<HeatReport> {
+        if !on {
             return None;
         }
-        Some(if heat.shown_gpu {
+        Some(if self.shown_gpu {
             HeatReport {
                 device: "gpu".to_owned(),
-                progress: if heat.gpu_max.is_some() { 1.0 } else { 0.0 },
-                max: heat.gpu_max.unwrap_or(0),
+                progress: if self.gpu_max.is_some() { 1.0 } else { 0.0 },
+                max: self.gpu_max.unwrap_or(0),
             }
         } else {
             HeatReport {
                 device: "cpu".to_owned(),
-                progress: heat.cpu.as_ref().map_or(0.0, CpuHeatMap::fraction),
-                max: heat.cpu.as_ref().map_or(0, CpuHeatMap::max_count),
+                progress: self.cpu.as_ref().map_or(0.0, CpuHeatMap::fraction),
+                max: self.cpu.as_ref().map_or(0, CpuHeatMap::max_count),
             }
         })
     }
+
+    /// Why the GPU could not trace the map, if it could not.
+    pub fn gpu_error(&self) -> Option<&str> {
+        self.gpu_error.as_deref()
+    }
+
+    /// Where the image shown came from and its largest count so far: `(true, max)` from the
+    /// GPU (max once read back), `(false, max)` from the CPU, with its progress and size.
+    pub fn shown(&self) -> Shown {
+        if self.shown_gpu {
+            Shown::Gpu(self.gpu_max)
+        } else if let Some(cpu) = &self.cpu {
+            Shown::Cpu {
+                fraction: cpu.fraction(),
+                size: [cpu.frame().width, cpu.frame().height],
+                max: cpu.max_count(),
+            }
+        } else {
+            Shown::Nothing
+        }
+    }
+
+    /// What the pixels count.
+    pub fn metric(&self) -> Metric {
+        self.metric
+    }
 }
 
-/// The heat map's controls and legend.
-pub fn section(app: &mut LabApp, ui: &mut egui::Ui) {
-    let heat = &mut app.lab3d.heat;
-    ui.checkbox(&mut heat.on, "show the heat map")
-        .on_hover_text("each pixel: how much work its camera ray needed for the first hit");
-    if !heat.on {
-        return;
-    }
-    ui.horizontal(|ui| {
-        ui.radio_value(&mut heat.metric, Metric::Nodes, "nodes visited");
-        ui.radio_value(&mut heat.metric, Metric::PrimitiveTests, "triangle tests");
-    });
-    ui.horizontal(|ui| {
-        ui.label("computed on:");
-        ui.radio_value(&mut heat.device, Device::Auto, "GPU where it can");
-        ui.radio_value(&mut heat.device, Device::Cpu, "CPU");
-    });
-    if let Some(e) = &heat.gpu_error {
-        ui.colored_label(crate::paint::colors::PRUNED, e);
-    }
-    if heat.shown_gpu {
-        ui.label("traced on the GPU (WGSL compute shader)");
-        if let Some(top) = heat.gpu_max {
-            legend(ui, top.max(1), heat.metric);
-        }
-    } else if let Some(cpu) = &heat.cpu {
-        ui.label(format!(
-            "traced on the CPU: {:.0}% of {}×{} rays",
-            cpu.fraction() * 100.0,
-            cpu.frame().width,
-            cpu.frame().height
-        ));
-        legend(ui, cpu.max_count().max(1), heat.metric);
-    }
+/// Where the image shown came from.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Shown {
+    /// No image yet.
+    Nothing,
+    /// The GPU's, with its largest count once read back.
+    Gpu(Option<u32>),
+    /// The CPU's, this far along, of this many pixels, with its largest count so far.
+    Cpu {
+        /// 0 to 1.
+        fraction: f32,
+        /// Width and height.
+        size: [u32; 2],
+        /// The largest count so far.
+        max: u32,
+    },
 }
 
 /// Traces (more of) the map for the view at `rect` and draws it over the view.
-pub fn overlay(app: &mut LabApp, ui: &mut egui::Ui, rect: egui::Rect) {
-    let Lab3d {
-        heat,
-        built,
-        camera,
-        ..
-    } = &mut app.lab3d;
-    if !heat.on {
+pub fn overlay(cx: &mut Cx<'_>, ui: &mut egui::Ui, rect: egui::Rect) {
+    let lab = cx.lab.three();
+    let settings = lab.heat;
+    let camera = &lab.camera;
+    let heat = &mut cx.ui.view3d.heat;
+    heat.metric = settings.metric;
+    if !settings.on {
         return;
     }
-    let Some(built) = built.as_ref() else { return };
+    let Some(built) = lab.half.lane.current(lab.revision()) else {
+        return;
+    };
     let size = [
         rect.width().round().max(1.0) as u32,
         rect.height().round().max(1.0) as u32,
     ];
-    let gpu_ready = heat.device == Device::Auto
-        && matches!(built.structure, Built::AabbTree(_))
-        && app.render_state.as_ref().is_some_and(|s| {
+    let gpu_ready = settings.device == Device::Auto
+        && matches!(built.built, Built::AabbTree(_))
+        && cx.ui.render_state.as_ref().is_some_and(|s| {
             gpu_heatmap_supported(&s.adapter.get_downlevel_capabilities(), &s.device.limits())
         });
     let key = Key {
         camera: *camera,
         size,
         structure: (built.revision, built.settings),
-        metric: heat.metric,
+        metric: settings.metric,
         gpu: gpu_ready,
     };
     let fresh = heat.key != Some(key);
     heat.key = Some(key);
     let frame = camera.ray_frame(size[0], size[1]);
-    if gpu_ready && let Some(state) = &app.render_state {
+    if gpu_ready && let Some(state) = &cx.ui.render_state {
         if fresh {
             trace_on_gpu(heat, built, state, &frame);
         }
@@ -189,12 +184,12 @@ pub fn overlay(app: &mut LabApp, ui: &mut egui::Ui, rect: egui::Rect) {
     }
     heat.shown_gpu = false;
     if fresh || heat.cpu.is_none() {
-        heat.cpu = Some(CpuHeatMap::new(frame, heat.metric));
+        heat.cpu = Some(CpuHeatMap::new(frame, settings.metric));
     }
     let Some(cpu) = &mut heat.cpu else { return };
     if !cpu.is_done() {
         let start = Instant::now();
-        let structure = &built.structure;
+        let structure = &built.built;
         let mut cost_of = |ray: &Ray3| -> QueryCost { structure.ray_first_hit(ray, &mut ()).cost };
         while !cpu.is_done() && start.elapsed().as_secs_f64() * 1e3 < CPU_BUDGET_MS {
             cpu.step(&mut cost_of, 4_096);
@@ -219,12 +214,12 @@ pub fn overlay(app: &mut LabApp, ui: &mut egui::Ui, rect: egui::Rect) {
 
 /// Uploads the tree when it changed, and traces the map on the GPU.
 fn trace_on_gpu(
-    heat: &mut Heat,
-    built: &super::build::Built3d,
+    heat: &mut HeatMap,
+    built: &Structure<Triangle3>,
     state: &eframe::egui_wgpu::RenderState,
-    frame: &crate::view3d::camera::RayFrame,
+    frame: &crate::model::orbit_camera::RayFrame,
 ) {
-    let Built::AabbTree(tree) = &built.structure else {
+    let Built::AabbTree(tree) = &built.built else {
         return;
     };
     let device = &state.device;

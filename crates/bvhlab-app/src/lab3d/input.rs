@@ -1,13 +1,17 @@
 //! The 3D view's pointer: drag to orbit (shift-drag or right-drag to pan), scroll to zoom,
 //! click the mesh to cast a ray from the camera or to place the query point, and drag the
 //! gizmo's handles to move the ray's origin or direction or the point, freely in the view's
-//! plane or along one axis.
+//! plane or along one axis. The handle held is the view's own state; the camera, ray and
+//! point change through actions.
 
 use bvhlab::Ray3;
 use bvhlab::glam::{Vec2, Vec3};
 use egui::{Pos2, Rect, Response};
 
-use super::{Lab3d, Tool3d};
+use crate::model::Action3d;
+use crate::model::lab3d::Lab3d;
+use crate::model::tools::Tool3d;
+use crate::ui_state::Cx;
 
 /// A gizmo handle.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -22,28 +26,19 @@ pub enum Handle {
     Axis(usize, Vec3),
 }
 
-/// What a click asked for.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Asked {
-    /// A new ray was cast.
-    Ray,
-    /// The point was placed.
-    Point,
-}
-
 /// How close to a handle (in points) a press grabs it.
 const GRAB_RADIUS: f32 = 10.0;
 
 /// The gizmo's length at `at`: a constant share of the view's size (as gizmos in modelling
 /// programs keep their size on screen), measured at the point's depth.
-fn gizmo_length(lab: &Lab3d, at: Vec3) -> f32 {
+fn gizmo_length(lab: &Lab3d, rect: Rect, at: Vec3) -> f32 {
     let camera = &lab.camera;
     let depth = (at - camera.eye())
         .dot(camera.basis().forward)
         .max(camera.distance * 0.1);
     // In a view narrower than tall, a share of its width.
-    let aspect = if lab.view_rect.is_positive() {
-        lab.view_rect.aspect_ratio().min(1.0)
+    let aspect = if rect.is_positive() {
+        rect.aspect_ratio().min(1.0)
     } else {
         1.0
     };
@@ -51,7 +46,7 @@ fn gizmo_length(lab: &Lab3d, at: Vec3) -> f32 {
 }
 
 /// The handles shown, with where each is.
-pub fn handles(lab: &Lab3d) -> Vec<(Handle, Vec3)> {
+pub fn handles(lab: &Lab3d, rect: Rect) -> Vec<(Handle, Vec3)> {
     let mut out = Vec::new();
     let base = match lab.tool {
         Tool3d::Ray => lab.ray.map(|ray| {
@@ -60,14 +55,14 @@ pub fn handles(lab: &Lab3d) -> Vec<(Handle, Vec3)> {
             let dir = ray.dir().normalize_or_zero();
             out.push((
                 Handle::RayDirection,
-                origin + dir * gizmo_length(lab, origin),
+                origin + dir * gizmo_length(lab, rect, origin),
             ));
             origin
         }),
         Tool3d::Point => lab.point.inspect(|&p| out.push((Handle::Point, p))),
     };
     if let Some(base) = base {
-        let len = gizmo_length(lab, base) * 0.7;
+        let len = gizmo_length(lab, rect, base) * 0.7;
         for (axis, unit) in [Vec3::X, Vec3::Y, Vec3::Z].into_iter().enumerate() {
             out.push((Handle::Axis(axis, base), base + unit * len));
         }
@@ -80,13 +75,15 @@ fn local(rect: Rect, p: Pos2) -> Vec2 {
     Vec2::new(p.x - rect.min.x, p.y - rect.min.y)
 }
 
-/// Handles the pointer over the view at `rect`; what a click asked for.
-pub fn handle_input(lab: &mut Lab3d, response: &Response, rect: Rect) -> Option<Asked> {
+/// Turns the pointer over the view at `rect` into actions: the camera, the ray, the point.
+pub fn handle_input(cx: &mut Cx<'_>, response: &Response, rect: Rect) {
+    let lab = cx.lab.three();
     let size = Vec2::new(rect.width(), rect.height());
+    let mut camera = lab.camera;
     if response.hovered() {
         let scroll = response.ctx.input(|i| i.smooth_scroll_delta.y);
         if scroll != 0.0 {
-            lab.camera.zoom((-scroll * 0.002).exp());
+            camera.zoom((-scroll * 0.002).exp());
         }
     }
     // A handle is grabbed where the press began, not where the drag was recognised.
@@ -95,7 +92,7 @@ pub fn handle_input(lab: &mut Lab3d, response: &Response, rect: Rect) -> Option<
         && let Some(pos) = press.or_else(|| response.interact_pointer_pos())
     {
         let pointer = local(rect, pos);
-        lab.dragging = handles(lab)
+        cx.ui.view3d.dragging = handles(lab, rect)
             .into_iter()
             .filter_map(|(h, at)| {
                 let screen = lab.camera.project(at, size)?;
@@ -114,49 +111,61 @@ pub fn handle_input(lab: &mut Lab3d, response: &Response, rect: Rect) -> Option<
                 i.pointer.secondary_down() || i.pointer.middle_down(),
             )
         });
-        match lab.dragging {
-            Some(handle) => drag_handle(lab, handle, delta, size),
-            None if shift || secondary => lab.camera.pan(delta, size.y),
-            None => lab.camera.orbit(delta),
+        match cx.ui.view3d.dragging {
+            Some(handle) => {
+                if let Some(action) = drag_handle(lab, rect, handle, delta, size) {
+                    cx.act(action);
+                }
+            }
+            None if shift || secondary => camera.pan(delta, size.y),
+            None => camera.orbit(delta),
         }
     }
     if response.drag_stopped() {
-        lab.dragging = None;
+        cx.ui.view3d.dragging = None;
+    }
+    if camera != lab.camera {
+        cx.act(Action3d::SetCamera(camera));
     }
     if response.clicked()
         && let Some(pos) = response.interact_pointer_pos()
+        && let Some(action) = click(lab, local(rect, pos), size)
     {
-        return click(lab, local(rect, pos), size);
+        cx.act(action);
     }
-    None
 }
 
 /// A click: casts a ray from the camera, or puts the point where the click meets the mesh.
-fn click(lab: &mut Lab3d, pixel: Vec2, size: Vec2) -> Option<Asked> {
+fn click(lab: &Lab3d, pixel: Vec2, size: Vec2) -> Option<Action3d> {
     let ray = lab.camera.ray_through(pixel, size)?;
     let ray = Ray3::new(ray.origin(), ray.dir().normalize_or_zero()).ok()?;
     match lab.tool {
-        Tool3d::Ray => {
-            lab.ray = Some(ray);
-            Some(Asked::Ray)
-        }
+        Tool3d::Ray => Some(Action3d::SetRay(Some(ray))),
         Tool3d::Point => {
-            let built = lab.built.as_ref()?;
-            let size = lab.mesh.as_ref().map_or(1.0, super::mesh::Mesh3d::size);
-            let hit = built.structure.ray_first_hit(&ray, &mut ()).answer;
+            let built = lab.half.lane.current(lab.revision())?;
+            let size = lab
+                .mesh
+                .as_ref()
+                .map_or(1.0, crate::model::mesh::Mesh3d::size);
+            let hit = built.built.ray_first_hit(&ray, &mut ()).answer;
             // Just off the surface, on the camera's side, so the distance is not zero.
             let at = match hit {
                 Some(h) => ray.at(h.t) - ray.dir() * size * 0.03,
                 None => lab.camera.target,
             };
-            lab.point = Some(at);
-            Some(Asked::Point)
+            Some(Action3d::SetPoint(Some(at)))
         }
     }
 }
 
-/// Moves what `handle` holds by a drag of `delta` points.
-fn drag_handle(lab: &mut Lab3d, handle: Handle, delta: Vec2, size: Vec2) {
+/// What a drag of `delta` points on `handle` does to the ray or the point.
+fn drag_handle(
+    lab: &Lab3d,
+    rect: Rect,
+    handle: Handle,
+    delta: Vec2,
+    size: Vec2,
+) -> Option<Action3d> {
     let camera = lab.camera;
     let basis = camera.basis();
     // World units per point at a given point's depth.
@@ -168,7 +177,7 @@ fn drag_handle(lab: &mut Lab3d, handle: Handle, delta: Vec2, size: Vec2) {
     let moved = |at: Vec3, axis: usize| {
         let mut unit = Vec3::ZERO;
         unit[axis] = 1.0;
-        let len = gizmo_length(lab, at);
+        let len = gizmo_length(lab, rect, at);
         let (Some(a), Some(b)) = (
             camera.project(at, size),
             camera.project(at + unit * len, size),
@@ -181,32 +190,28 @@ fn drag_handle(lab: &mut Lab3d, handle: Handle, delta: Vec2, size: Vec2) {
         }
         at + unit * (delta.dot(screen) / screen.length_squared() * len)
     };
+    let ray = |new: Result<Ray3, _>| new.ok().map(|r| Action3d::SetRay(Some(r)));
     match (handle, lab.tool) {
         (Handle::RayOrigin, _) => {
-            if let Some(ray) = lab.ray {
-                lab.ray = Ray3::new(in_plane(ray.origin()), ray.dir())
-                    .ok()
-                    .or(lab.ray);
-            }
+            let r = lab.ray?;
+            ray(Ray3::new(in_plane(r.origin()), r.dir()))
         }
         (Handle::RayDirection, _) => {
-            if let Some(ray) = lab.ray {
-                let tip =
-                    ray.origin() + ray.dir().normalize_or_zero() * gizmo_length(lab, ray.origin());
-                let dir = (in_plane(tip) - ray.origin()).normalize_or_zero();
-                lab.ray = Ray3::new(ray.origin(), dir).ok().or(lab.ray);
-            }
+            let r = lab.ray?;
+            let tip =
+                r.origin() + r.dir().normalize_or_zero() * gizmo_length(lab, rect, r.origin());
+            ray(Ray3::new(
+                r.origin(),
+                (in_plane(tip) - r.origin()).normalize_or_zero(),
+            ))
         }
-        (Handle::Point, _) => lab.point = lab.point.map(in_plane),
+        (Handle::Point, _) => Some(Action3d::SetPoint(Some(in_plane(lab.point?)))),
         (Handle::Axis(axis, _), Tool3d::Ray) => {
-            if let Some(ray) = lab.ray {
-                lab.ray = Ray3::new(moved(ray.origin(), axis), ray.dir())
-                    .ok()
-                    .or(lab.ray);
-            }
+            let r = lab.ray?;
+            ray(Ray3::new(moved(r.origin(), axis), r.dir()))
         }
         (Handle::Axis(axis, _), Tool3d::Point) => {
-            lab.point = lab.point.map(|p| moved(p, axis));
+            Some(Action3d::SetPoint(Some(moved(lab.point?, axis))))
         }
     }
 }

@@ -8,8 +8,8 @@ use bvhlab::glam::Vec3;
 use bvhlab::structure::bvh::NodeVolume;
 use bvhlab::{Bvh, NodeId, NodeShape, SplitPlane, Triangle3};
 
-use super::build::Built3d;
-use crate::structures::Built;
+use crate::model::build_job::Structure;
+use crate::model::structures::Built;
 
 /// A node's drawing: its region, the planes that split it, and its children.
 #[derive(Clone, Debug, PartialEq)]
@@ -39,10 +39,10 @@ where
     })
 }
 
-impl Built3d {
+impl Structure<Triangle3> {
     /// Node `id`, or `None` past the last node.
     pub fn node(&self, id: NodeId) -> Option<NodeView> {
-        match &self.structure {
+        match &self.built {
             Built::SphereTree(b) => bvh_view(b, id, NodeShape::Sphere),
             Built::AabbTree(b) => bvh_view(b, id, NodeShape::Aabb),
             Built::ObbTree(b) => bvh_view(b, id, NodeShape::Obb),
@@ -60,7 +60,7 @@ impl Built3d {
 
     /// The roots: one for a tree, every cell for a grid.
     fn roots(&self) -> Vec<NodeId> {
-        match &self.structure {
+        match &self.built {
             Built::SphereTree(b) => b.root().into_iter().collect(),
             Built::AabbTree(b) => b.root().into_iter().collect(),
             Built::ObbTree(b) => b.root().into_iter().collect(),
@@ -77,7 +77,7 @@ impl Built3d {
     pub fn children(&self, id: NodeId) -> Vec<NodeId> {
         let pair = |p: Option<(NodeId, NodeId)>| p.map_or_else(Vec::new, |(a, b)| vec![a, b]);
         let valid = |len: usize| id.index() < len;
-        match &self.structure {
+        match &self.built {
             Built::SphereTree(b) if valid(b.nodes().len()) => pair(b.children(id)),
             Built::AabbTree(b) if valid(b.nodes().len()) => pair(b.children(id)),
             Built::ObbTree(b) if valid(b.nodes().len()) => pair(b.children(id)),
@@ -93,7 +93,7 @@ impl Built3d {
     /// The primitives a leaf (or cell) lists; empty for inner nodes.
     pub fn leaf_primitives(&self, id: NodeId) -> Vec<u32> {
         let valid = |len: usize| id.index() < len;
-        match &self.structure {
+        match &self.built {
             Built::SphereTree(b) if valid(b.nodes().len()) => b.leaf_primitives(id).to_vec(),
             Built::AabbTree(b) if valid(b.nodes().len()) => b.leaf_primitives(id).to_vec(),
             Built::ObbTree(b) if valid(b.nodes().len()) => b.leaf_primitives(id).to_vec(),
@@ -136,7 +136,7 @@ impl Built3d {
             .filter_map(|id| self.node(id))
             // A grid's empty cells say nothing about the mesh: leave them out.
             .filter(|n| {
-                !(matches!(self.structure, Built::Grid(_))
+                !(matches!(self.built, Built::Grid(_))
                     && n.leaf
                     && self.leaf_primitives(n.id).is_empty())
             })

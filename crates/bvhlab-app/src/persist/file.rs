@@ -7,7 +7,7 @@ use std::io;
 use serde::Deserialize;
 use serde_json::ser::Formatter;
 
-use crate::app::LabApp;
+use crate::model::Lab;
 
 use super::MAX_FILE_BYTES;
 use super::names::shorten;
@@ -16,8 +16,8 @@ use super::state::{FORMAT_VERSION, SavedState};
 /// The lab's full state (every shape written out) as a pretty JSON scene file. When the
 /// pretty form would pass [`MAX_FILE_BYTES`] (a scene near the shape and point limits), the
 /// compact form is written instead, so that every scene the lab holds can be read back.
-pub fn to_file(app: &LabApp) -> Vec<u8> {
-    let state = SavedState::capture_full(app);
+pub fn to_file(lab: &Lab) -> Vec<u8> {
+    let state = SavedState::capture_full(lab);
     let mut out = Vec::new();
     let mut serializer = serde_json::Serializer::with_formatter(&mut out, SceneFormatter::new());
     // Serializing this plain data into memory cannot fail (no maps with non-string keys,

@@ -48,8 +48,8 @@ pub use state::{
 pub use state3d::{CameraState, MeshState, Ray3State, StoredPoint3, ThreeState};
 pub use storage::{AUTOSAVE_INTERVAL, Autosave, AutosaveStep, STORAGE_KEY};
 
-use crate::app::LabApp;
-use crate::presets::Preset;
+use crate::model::presets::Preset;
+use crate::model::{Action, Action2d, Lab};
 
 /// The largest scene file (and saved state) read, in bytes: 16 MiB, room for a scene at the
 /// shape and point limits written out in full.
@@ -69,36 +69,27 @@ pub const MAX_POINTS: usize = 250_000;
 /// The largest coordinate, radius or view value, in absolute value: the core squares
 /// distances in `f32`, and 1e15² = 1e30 stays far from `f32::MAX` (3.4e38), sums included.
 pub const MAX_COORD: f32 = 1e15;
-/// The range of the view's scale (screen points per world unit), the canvas's zoom range.
-pub const MIN_SCALE: f32 = 1e-3;
-/// See [`MIN_SCALE`].
-pub const MAX_SCALE: f32 = 1e6;
-/// The largest `k` of the k-nearest query.
-pub const MAX_K: usize = 64;
-/// The largest leaf size.
-pub const MAX_LEAF_SIZE: usize = 64;
-/// The most grid cells per axis (the panel's slider goes to 128).
-pub const MAX_GRID_CELLS: u32 = 256;
-/// The deepest quadtree (the panel's slider goes to 14).
-pub const MAX_QUADTREE_DEPTH: usize = 20;
+pub use crate::model::camera2d::{MAX_SCALE, MIN_SCALE};
+pub use crate::model::half::MAX_K;
+pub use crate::model::structures::{MAX_GRID_CELLS, MAX_LEAF_SIZE, MAX_QUADTREE_DEPTH};
 
-/// Opens a scene file in `app`, or leaves it as it was.
+/// The action that opens a scene file, or why it cannot be opened.
 ///
 /// # Errors
 /// What was wrong with the file, and that the current scene was kept.
-pub fn open_file(app: &mut LabApp, bytes: &[u8]) -> Result<(), String> {
+pub fn open_file(bytes: &[u8]) -> Result<Action, String> {
     from_file(bytes)
-        .and_then(|state| state.restore(app))
+        .and_then(|state| state.restore())
         .map_err(|e| format!("{}. The current scene was kept.", capitalized(&e)))
 }
 
-/// Opens a share link's fragment in `app`, or leaves it as it was.
+/// The action that opens a share link's fragment, or why it cannot be opened.
 ///
 /// # Errors
 /// What was wrong with the link, and that the current scene was kept.
-pub fn open_fragment(app: &mut LabApp, fragment: &str) -> Result<(), String> {
+pub fn open_fragment(fragment: &str) -> Result<Action, String> {
     from_fragment(fragment)
-        .and_then(|state| state.restore(app))
+        .and_then(|state| state.restore())
         .map_err(|e| format!("{}. The current scene was kept.", capitalized(&e)))
 }
 
@@ -106,43 +97,43 @@ pub fn open_fragment(app: &mut LabApp, fragment: &str) -> Result<(), String> {
 ///
 /// In order: a share link's fragment (`#s=...`; other fragments are ignored), then the
 /// `?preset=` slug, then the state saved in the browser, then the default scene. What fails
-/// to load leaves the default scene and says why in the status line (`app.message`).
+/// to load leaves the default scene and says why in the status line.
 pub fn startup(
     fragment: Option<&str>,
     preset: Option<&str>,
     saved: Option<&str>,
-) -> (LabApp, Option<String>) {
-    let mut app = LabApp::default();
+) -> (Lab, Option<String>) {
+    let mut lab = Lab::default();
     let link = fragment.filter(|f| f.trim().trim_start_matches('#').starts_with("s="));
-    let outcome = if let Some(link) = link {
+    let action = if let Some(link) = link {
         from_fragment(link)
-            .and_then(|state| state.restore(&mut app))
+            .and_then(|state| state.restore())
             .map_err(|e| format!("The share link could not be opened: {e}"))
     } else if let Some(slug) = preset {
-        match Preset::from_slug(slug) {
-            Some(p) => {
-                app.load_preset(p);
-                Ok(())
-            }
-            None => Err(format!(
-                "The address asks for the preset \"{}\", which the lab does not have",
-                shorten(slug, 40)
-            )),
-        }
+        Preset::from_slug(slug)
+            .map(|p| Action2d::LoadPreset(p).into())
+            .ok_or_else(|| {
+                format!(
+                    "The address asks for the preset \"{}\", which the lab does not have",
+                    shorten(slug, 40)
+                )
+            })
     } else if let Some(saved) = saved {
         file::from_json(saved.as_bytes(), "the saved state")
-            .and_then(|state| state.restore(&mut app))
+            .and_then(|state| state.restore())
             .map_err(|e| format!("The state saved in this browser could not be restored: {e}"))
     } else {
-        Ok(())
+        Ok(Action::SetMessage(None))
     };
-    let message = outcome
+    let message = action
+        .and_then(|a| lab.apply(a))
         .err()
         .map(|e| format!("{e}. The default scene is shown."));
     if message.is_some() {
-        app.message.clone_from(&message);
+        // Setting a message always applies.
+        let _ = lab.apply(Action::SetMessage(message.clone()));
     }
-    (app, message)
+    (lab, message)
 }
 
 /// `text` with its first letter capitalized (messages are built from lower-case parts).

@@ -15,10 +15,10 @@ use bvhlab::structure::bvh::SphereFit;
 use serde::de::Error as _;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-use crate::presets::Preset;
+use crate::model::presets::Preset;
+use crate::model::scene::ShapeKind;
+use crate::model::structures::{KdSplit, StructureKind};
 use crate::pseudocode::{Task, Variant};
-use crate::scene::ShapeKind;
-use crate::structures::{KdSplit, StructureKind};
 
 use super::MAX_COORD;
 

@@ -10,9 +10,11 @@
 use bvhlab::glam::Vec2;
 use serde::{Deserialize, Serialize};
 
-use crate::app::{Display, LabApp, RayHandles};
-use crate::structures::BuildSettings;
-use crate::volumes::VolumeToggles;
+use crate::model::Lab;
+use crate::model::camera2d::Camera2d;
+use crate::model::lab2d::{Display, RayHandles};
+use crate::model::structures::BuildSettings;
+use crate::model::volumes::VolumeToggles;
 
 use super::names::{
     Coord, KdSplitName, PresetSlug, ShapeName, SphereFitName, SplitName, StoredPoint,
@@ -85,8 +87,9 @@ pub struct SavedState {
     pub playback: PlaybackState,
     /// Pan and zoom.
     pub view: ViewState,
-    /// The 3D half: whether it is shown, its mesh, structure, camera, ray and point (absent in
-    /// files from before the 3D view: the 2D half is shown).
+    /// The 3D half: whether it is shown, its mesh, structure, camera, ray and point, and its
+    /// own question and playback (absent in files from before the 3D view: the 2D half is
+    /// shown).
     pub three: Option<ThreeState>,
 }
 
@@ -306,39 +309,42 @@ pub struct ViewState {
 
 impl Default for ViewState {
     fn default() -> Self {
-        let view = crate::view::View::default();
+        let camera = Camera2d::default();
         Self {
-            center: stored(view.center),
-            scale: Coord(view.scale),
+            center: stored(camera.center),
+            scale: Coord(camera.scale),
         }
     }
 }
 
 impl Default for SavedState {
     fn default() -> Self {
-        Self::capture(&LabApp::default())
+        Self::capture(&Lab::default())
     }
 }
 
 impl SavedState {
     /// The lab's state, with the scene stored as its preset's name when it is that preset
     /// unmodified (for links and the browser's saved state, which must stay small).
-    pub fn capture(app: &LabApp) -> Self {
-        let mut state = Self::capture_full(app);
-        if app.scene.shapes() == app.preset.build().0.shapes() {
-            state.scene = SceneState::Preset(PresetSlug(app.preset));
+    pub fn capture(lab: &Lab) -> Self {
+        let mut state = Self::capture_full(lab);
+        let two = lab.two();
+        if two.scene.shapes() == two.preset.build().0.shapes() {
+            state.scene = SceneState::Preset(PresetSlug(two.preset));
         }
         state
     }
 
     /// The lab's state with every shape written out (for files, which should open the same
     /// even if a preset changes one day).
-    pub fn capture_full(app: &LabApp) -> Self {
+    pub fn capture_full(lab: &Lab) -> Self {
+        let two = lab.two();
+        let half = &two.half;
         Self {
             version: FORMAT_VERSION,
-            preset: PresetSlug(app.preset),
+            preset: PresetSlug(two.preset),
             scene: SceneState::Shapes(
-                app.scene
+                two.scene
                     .shapes()
                     .iter()
                     .map(|s| ShapeState {
@@ -347,29 +353,29 @@ impl SavedState {
                     })
                     .collect(),
             ),
-            selection: app.selection.clone(),
-            structure: app.lane.settings.into(),
-            compare: app.compare.as_ref().map(|lane| lane.settings.into()),
-            display: app.display.into(),
-            volumes: app.volume_toggles.into(),
-            ray: app.ray.map(|r: RayHandles| RayState {
+            selection: two.selection.clone(),
+            structure: half.lane.settings.into(),
+            compare: half.compare.as_ref().map(|lane| lane.settings.into()),
+            display: two.display.into(),
+            volumes: two.volumes.into(),
+            ray: two.ray.map(|r: RayHandles| RayState {
                 origin: stored(r.origin),
                 target: stored(r.target),
             }),
-            point: app.point.map(stored),
-            k: app.k,
-            radius: Coord(app.radius),
-            task: app.task.into(),
-            variant: app.variant.into(),
+            point: two.point.map(stored),
+            k: half.k,
+            radius: Coord(half.radius),
+            task: half.task.into(),
+            variant: half.variant.into(),
             playback: PlaybackState {
-                step: app.playback.step,
-                live: app.playback.at_end,
+                step: half.playback.step,
+                live: half.playback.at_end,
             },
             view: ViewState {
-                center: stored(app.view.center),
-                scale: Coord(app.view.scale),
+                center: stored(two.camera.center),
+                scale: Coord(two.camera.scale),
             },
-            three: Some(ThreeState::capture(app)),
+            three: Some(ThreeState::capture(lab)),
         }
     }
 }

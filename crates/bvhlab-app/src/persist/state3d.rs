@@ -1,6 +1,8 @@
 //! The 3D half's part of a [`SavedState`](super::SavedState): which half is shown, the mesh
 //! (a built-in by slug; a dropped file only by name, since its bytes can be hundreds of
-//! megabytes), the structure's settings, the camera, the ray, the point and the radius.
+//! megabytes), the structure's settings (and the comparison's), the camera, the ray, the
+//! point, the radius, and the half's own task, k and playback. A file from before the halves
+//! kept their own question takes the 2D half's for both, as that lab did.
 //!
 //! A file mesh cannot come back by itself after a reload: the state keeps its name, the
 //! built-in bunny is shown in its place with everything else as it was, and the status line
@@ -10,14 +12,15 @@ use bvhlab::Ray3;
 use bvhlab::glam::Vec3;
 use serde::{Deserialize, Serialize};
 
-use crate::app::{Dimension, LabApp};
-use crate::lab3d::mesh::MeshSource;
-use crate::lab3d::{DEFAULT_MESH, Placement3d};
-use crate::structures::BuildSettings;
-use crate::view3d::camera::OrbitCamera;
+use crate::model::lab3d::{DEFAULT_MESH, Placement3d};
+use crate::model::mesh::MeshSource;
+use crate::model::orbit_camera::OrbitCamera;
+use crate::model::restore::{Restore3d, RestoreHalf};
+use crate::model::structures::BuildSettings;
+use crate::model::{Dimension, Lab};
 
-use super::names::{Coord, shorten};
-use super::state::SettingsState;
+use super::names::{Coord, TaskName, VariantName, shorten};
+use super::state::{PlaybackState, SettingsState};
 
 /// A point or direction in 3D as stored: `[x, y, z]`.
 pub type StoredPoint3 = [Coord; 3];
@@ -40,6 +43,16 @@ pub struct ThreeState {
     pub point: Option<StoredPoint3>,
     /// The range query's radius (absent: a tenth of the mesh's size).
     pub radius: Option<Coord>,
+    /// The comparison structure's settings, when two are shown.
+    pub compare: Option<SettingsState>,
+    /// What the 3D half steps through (absent: the 2D half's task).
+    pub task: Option<TaskName>,
+    /// Which version of the algorithm (absent: the 2D half's).
+    pub variant: Option<VariantName>,
+    /// How many nearest neighbours (absent: the 2D half's k).
+    pub k: Option<usize>,
+    /// Where the 3D half's playback is (absent: where the 2D half's is).
+    pub playback: Option<PlaybackState>,
 }
 
 /// The mesh: `{"builtin": "bunny"}` or `{"file": "part.stl"}`.
@@ -79,7 +92,7 @@ pub struct Ray3State {
 
 impl Default for ThreeState {
     fn default() -> Self {
-        Self::capture(&LabApp::default())
+        Self::capture(&Lab::default())
     }
 }
 
@@ -111,8 +124,9 @@ const MAX_NAME_CHARS: usize = 200;
 
 impl ThreeState {
     /// The 3D half's state as the lab has it now.
-    pub fn capture(app: &LabApp) -> Self {
-        let lab = &app.lab3d;
+    pub fn capture(whole: &Lab) -> Self {
+        let lab = whole.three();
+        let half = &lab.half;
         // A mesh still loading is the one to come back to.
         let mesh = match (&lab.pending, &lab.mesh) {
             (Some(MeshSource::Builtin(slug)), _) => MeshState::Builtin(slug.clone()),
@@ -127,13 +141,13 @@ impl ThreeState {
         // not yet framed has no camera, ray or point of its own yet.
         let (camera, ray, point, radius) = match lab.placement {
             Some(p) => (p.camera, p.ray, p.point, p.radius),
-            None if lab.placed() => (Some(lab.camera), lab.ray, lab.point, Some(lab.radius)),
+            None if lab.placed() => (Some(lab.camera), lab.ray, lab.point, Some(half.radius)),
             None => (None, None, None, None),
         };
         Self {
-            shown: app.dimension == Dimension::Three,
+            shown: whole.dimension() == Dimension::Three,
             mesh,
-            structure: lab.settings.into(),
+            structure: half.lane.settings.into(),
             camera: camera.as_ref().map(camera_state),
             ray: ray.map(|r| Ray3State {
                 origin: stored3(r.origin()),
@@ -141,21 +155,36 @@ impl ThreeState {
             }),
             point: point.map(stored3),
             radius: radius.map(Coord),
+            compare: half.compare.as_ref().map(|l| l.settings.into()),
+            task: Some(half.task.into()),
+            variant: Some(half.variant.into()),
+            k: Some(half.k),
+            playback: Some(PlaybackState {
+                step: half.playback.step,
+                live: half.playback.at_end,
+            }),
         }
     }
 }
 
-/// A [`ThreeState`] that passed its checks, ready to write into the lab.
-pub(super) struct Restored3d {
-    shown: bool,
-    mesh: MeshState,
-    settings: BuildSettings,
-    placement: Placement3d,
+/// A [`ThreeState`] that passed its checks, ready to restore, and the note for a mesh that
+/// was a file.
+pub(super) struct Checked3d {
+    pub(super) shown: bool,
+    pub(super) restore: Restore3d,
+    pub(super) note: Option<String>,
 }
 
-impl Restored3d {
-    /// Checks `state`, with `settings` the checked build settings, or says what is wrong.
-    pub(super) fn check(state: &ThreeState, settings: BuildSettings) -> Result<Self, String> {
+impl Checked3d {
+    /// Checks `state`, with `settings` and `compare` its checked build settings and `half`
+    /// the 2D half's question and playback (what a file from before the halves kept their
+    /// own gives both), or says what is wrong.
+    pub(super) fn check(
+        state: &ThreeState,
+        settings: BuildSettings,
+        compare: Option<BuildSettings>,
+        two: &RestoreHalf,
+    ) -> Result<Self, String> {
         if let MeshState::Builtin(slug) = &state.mesh
             && !bvhlab_meshio::builtin::list()
                 .iter()
@@ -186,51 +215,52 @@ impl Restored3d {
             .point
             .map(|p| point3("the 3D query point", p))
             .transpose()?;
-        let mesh = match &state.mesh {
-            MeshState::File(name) => MeshState::File(shorten(name, MAX_NAME_CHARS).into_owned()),
-            builtin @ MeshState::Builtin(_) => builtin.clone(),
+        let k = state.k.unwrap_or(two.k);
+        if !(1..=crate::model::half::MAX_K).contains(&k) {
+            return Err(format!(
+                "the 3D k is {k}; it must be 1 to {}",
+                crate::model::half::MAX_K
+            ));
+        }
+        let playback = state.playback.unwrap_or(PlaybackState {
+            step: two.step,
+            live: two.live,
+        });
+        let (mesh, note) = match &state.mesh {
+            MeshState::File(name) => {
+                let name = shorten(name, MAX_NAME_CHARS);
+                (
+                    MeshSource::Builtin(DEFAULT_MESH.to_owned()),
+                    Some(format!(
+                        "The 3D view showed {name}, a file: drop it on the page again to see it \
+                         (the lab keeps only its name). The built-in bunny is shown meanwhile."
+                    )),
+                )
+            }
+            MeshState::Builtin(slug) => (MeshSource::Builtin(slug.clone()), None),
         };
         Ok(Self {
             shown: state.shown,
-            mesh,
-            settings,
-            placement: Placement3d {
-                camera,
-                ray,
-                point,
-                radius,
+            restore: Restore3d {
+                mesh,
+                half: RestoreHalf {
+                    settings,
+                    compare,
+                    task: state.task.map_or(two.task, Into::into),
+                    variant: state.variant.map_or(two.variant, Into::into),
+                    k,
+                    step: playback.step,
+                    live: playback.live,
+                },
+                placement: Placement3d {
+                    camera,
+                    ray,
+                    point,
+                    radius,
+                },
             },
+            note,
         })
-    }
-
-    /// Writes the state into `app`: the mesh loads on the next frame and the camera, ray and
-    /// point come back over it. Returns a message when the mesh was a file.
-    pub(super) fn write(self, app: &mut LabApp) -> Option<String> {
-        app.dimension = if self.shown {
-            Dimension::Three
-        } else {
-            Dimension::Two
-        };
-        let lab = &mut app.lab3d;
-        lab.settings = self.settings;
-        lab.built = None;
-        lab.job = None;
-        lab.recording = None;
-        lab.snapshot = None;
-        lab.placement = Some(self.placement);
-        match self.mesh {
-            MeshState::Builtin(slug) => {
-                lab.open(MeshSource::Builtin(slug));
-                None
-            }
-            MeshState::File(name) => {
-                lab.open(MeshSource::Builtin(DEFAULT_MESH.to_owned()));
-                Some(format!(
-                    "The 3D view showed {name}, a file: drop it on the page again to see it \
-                     (the lab keeps only its name). The built-in bunny is shown meanwhile."
-                ))
-            }
-        }
     }
 }
 

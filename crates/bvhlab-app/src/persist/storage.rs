@@ -3,18 +3,12 @@
 //! writes it.
 //!
 //! Serializing a hand-drawn 10,000-segment scene takes milliseconds, too much for every
-//! frame. So each frame only compares a [`ChangeKey`] (the scene's revision, the settings,
-//! the ray and point, the step, the view: a few dozen bytes), and the state is serialized
-//! only after the key changed, at most every [`AUTOSAVE_INTERVAL`] seconds; it is written
-//! only if the JSON differs from what was stored last.
+//! frame. Every change of the lab goes through one function, which counts them
+//! ([`Lab::changes`]), so each frame only compares that count, and the state is serialized
+//! only after it moved, at most every [`AUTOSAVE_INTERVAL`] seconds; it is written only if the
+//! JSON differs from what was stored last.
 
-use bvhlab::glam::Vec2;
-
-use crate::app::{Display, LabApp, RayHandles};
-use crate::presets::Preset;
-use crate::pseudocode::{Task, Variant};
-use crate::structures::BuildSettings;
-use crate::volumes::VolumeToggles;
+use crate::model::Lab;
 
 use super::state::SavedState;
 
@@ -24,56 +18,6 @@ pub const STORAGE_KEY: &str = "bvh-lab/state/v1";
 
 /// The shortest time between two writes, in seconds.
 pub const AUTOSAVE_INTERVAL: f64 = 0.5;
-
-/// Everything [`SavedState::capture`] reads, cheaply: equal keys mean an equal saved state
-/// (the scene by its revision, which changes with every edit).
-#[derive(Clone, Debug, PartialEq)]
-struct ChangeKey {
-    revision: u64,
-    preset: Preset,
-    selection: Vec<usize>,
-    settings: BuildSettings,
-    compare: Option<BuildSettings>,
-    display: Display,
-    volumes: VolumeToggles,
-    ray: Option<RayHandles>,
-    point: Option<Vec2>,
-    k: usize,
-    radius: f32,
-    task: Task,
-    variant: Variant,
-    step: usize,
-    live: bool,
-    center: Vec2,
-    scale: f32,
-    /// The 3D half (a few strings and numbers: cheap to compare each frame).
-    three: super::ThreeState,
-}
-
-impl ChangeKey {
-    fn of(app: &LabApp) -> Self {
-        Self {
-            revision: app.scene.revision(),
-            preset: app.preset,
-            selection: app.selection.clone(),
-            settings: app.lane.settings,
-            compare: app.compare.as_ref().map(|l| l.settings),
-            display: app.display,
-            volumes: app.volume_toggles,
-            ray: app.ray,
-            point: app.point,
-            k: app.k,
-            radius: app.radius,
-            task: app.task,
-            variant: app.variant,
-            step: app.playback.step,
-            live: app.playback.at_end,
-            center: app.view.center,
-            scale: app.view.scale,
-            three: super::ThreeState::capture(app),
-        }
-    }
-}
 
 /// What to do this frame.
 #[derive(Clone, Debug, PartialEq)]
@@ -90,7 +34,7 @@ pub enum AutosaveStep {
 /// The autosave's memory: the last key seen, when the last write was, and what it wrote.
 #[derive(Clone, Debug, Default)]
 pub struct Autosave {
-    key: Option<ChangeKey>,
+    key: Option<u64>,
     dirty: bool,
     last_write: Option<f64>,
     stored: Option<String>,
@@ -109,15 +53,15 @@ impl Autosave {
     /// Takes the lab's current state as kept, without writing it: after a start-up that
     /// failed, the default scene it fell back to must not overwrite the state saved earlier
     /// until the student changes something.
-    pub fn keep_current(&mut self, app: &LabApp) {
-        self.key = Some(ChangeKey::of(app));
+    pub fn keep_current(&mut self, lab: &Lab) {
+        self.key = Some(lab.changes());
         self.dirty = false;
     }
 
     /// Called once a frame with the time in seconds: whether to write the state now.
-    pub fn poll(&mut self, app: &LabApp, now: f64) -> AutosaveStep {
-        let key = ChangeKey::of(app);
-        if self.key.as_ref() != Some(&key) {
+    pub fn poll(&mut self, lab: &Lab, now: f64) -> AutosaveStep {
+        let key = lab.changes();
+        if self.key != Some(key) {
             self.key = Some(key);
             self.dirty = true;
         }
@@ -132,7 +76,7 @@ impl Autosave {
         }
         self.dirty = false;
         self.last_write = Some(now);
-        let json = serde_json::to_string(&SavedState::capture(app)).unwrap_or_default();
+        let json = serde_json::to_string(&SavedState::capture(lab)).unwrap_or_default();
         if json.is_empty() || self.stored.as_ref() == Some(&json) {
             return AutosaveStep::Idle;
         }

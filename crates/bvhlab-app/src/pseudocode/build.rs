@@ -12,7 +12,7 @@ use bvhlab::Vector;
 
 use super::listing::{Context, Listing, Step, listing};
 use super::{Algorithm, Pseudocode};
-use crate::structures::StructureKind;
+use crate::model::structures::StructureKind;
 
 static BRUTE_FORCE: Listing = listing!(
     "Brute force: no build",

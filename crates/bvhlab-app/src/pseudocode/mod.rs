@@ -25,7 +25,7 @@ use bvhlab::glam::Vec2;
 use bvhlab::{Event, Vector};
 
 use self::listing::{Classify, Context, Listing};
-use crate::structures::StructureKind;
+use crate::model::structures::StructureKind;
 
 /// What is being stepped through.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

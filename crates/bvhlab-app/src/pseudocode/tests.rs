@@ -8,7 +8,7 @@ use bvhlab::{Event, NodeId};
 
 use super::listing::Step;
 use super::{Task, Variant, algorithm, line_of, pseudocode, variants};
-use crate::structures::StructureKind;
+use crate::model::structures::StructureKind;
 
 const VARIANTS: [Variant; 3] = [Variant::Full, Variant::Lecture, Variant::LecturePruned];
 

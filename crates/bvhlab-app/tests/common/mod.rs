@@ -55,12 +55,12 @@ pub fn shows(h: &Harness<'_, LabApp>, part: &str) -> bool {
 
 /// The screen point of a world point.
 pub fn screen(h: &Harness<'_, LabApp>, p: Vec2) -> Pos2 {
-    h.state().view.to_screen(p)
+    h.state().canvas_screen().to_screen(p)
 }
 
 /// The world point under a screen point.
 pub fn world(h: &Harness<'_, LabApp>, p: Pos2) -> Vec2 {
-    h.state().view.to_world(p)
+    h.state().canvas_screen().to_world(p)
 }
 
 /// A primary-button drag from `from` to `to`: press, eight moves (one frame each), release.
@@ -72,7 +72,7 @@ pub fn drag(h: &mut Harness<'_, LabApp>, from: Pos2, to: Pos2) {
 /// last stop.
 pub fn drag_path(h: &mut Harness<'_, LabApp>, from: Pos2, stops: &[Pos2]) {
     assert!(
-        h.state().view.rect.contains(from),
+        h.state().canvas_screen().rect.contains(from),
         "the drag starts on the canvas"
     );
     h.hover_at(from);
@@ -129,7 +129,7 @@ pub fn drag_test_ray(h: &mut Harness<'_, LabApp>) -> Ray2 {
     let to = screen(h, Vec2::new(20.0, 11.3));
     drag(h, from, to);
     let expected = Ray2::through(world(h, from), world(h, to)).expect("a proper ray");
-    let handles = h.state().ray.expect("the drag placed a ray");
+    let handles = h.state().lab().two().ray.expect("the drag placed a ray");
     assert_eq!(
         handles.ray().expect("valid"),
         expected,
@@ -172,6 +172,16 @@ impl egui::DroppedFile for DroppedFile {
     fn bytes(&self) -> Result<Vec<u8>, String> {
         std::fs::read(&self.0).map_err(|e| e.to_string())
     }
+}
+
+/// Applies `action` to the lab in the harness (as a panel or the page would ask for it), and
+/// lets the UI settle.
+pub fn act(h: &mut Harness<'_, LabApp>, action: impl Into<bvhlab_app::model::Action>) {
+    let action = action.into();
+    if let Err(e) = h.state_mut().apply(action.clone()) {
+        panic!("{action:?} was refused: {e}");
+    }
+    settle(h);
 }
 
 /// Drops the file at `path` on the window (it is opened in the next frames).

@@ -1,0 +1,179 @@
+//! The playback's state drawn on the canvas: the current node, the nodes waiting on the
+//! stack or queue, the best answer so far, a build's progress, and the node hovered in the
+//! tree diagram (or on the canvas) with its primitives.
+
+use bvhlab::glam::Vec2;
+use bvhlab::{Event, NodeId, NodeOutline, Segment2};
+use egui::Stroke;
+
+use super::draw::built;
+use crate::model::lab2d::Lab2d;
+use crate::model::lane::Lane;
+use crate::paint::{WorldPainter, clipped_plane, colors};
+use crate::pseudocode::Task;
+
+/// Every primitive in the subtree under `node` (leaves list them), without repeats.
+pub fn subtree_primitives(outline: &[NodeOutline<Vec2>], node: NodeId) -> Vec<u32> {
+    let mut out = Vec::new();
+    let mut stack = vec![node];
+    while let Some(n) = stack.pop() {
+        let Some(o) = outline.get(n.index()) else {
+            continue;
+        };
+        out.extend_from_slice(&o.primitives);
+        stack.extend(o.children.iter().copied());
+    }
+    out.sort_unstable();
+    out.dedup();
+    out
+}
+
+fn prim_stroke(
+    lab: &Lab2d,
+    prim: u32,
+    width: f32,
+    color: egui::Color32,
+    wp: &mut WorldPainter<'_>,
+) {
+    let Some(s) = lab.prims().segments.get(prim as usize) else {
+        return;
+    };
+    if s.a == s.b {
+        wp.dot(s.a, width + 1.5, color);
+    } else {
+        wp.line(s.a, s.b, Stroke::new(width, color));
+    }
+}
+
+/// The current node, the waiting nodes, and (while stepping) the best answer so far.
+pub(super) fn draw_step(lab: &Lab2d, lane: &Lane<Segment2>, live: bool, wp: &mut WorldPainter<'_>) {
+    let (Some((_, outline)), Some(snap), Some(rec)) =
+        (built(lab, lane), &lane.snapshot, lane.recorded())
+    else {
+        return;
+    };
+    if rec.question.task == Task::Build {
+        return;
+    }
+    for pending in &snap.frontier {
+        if let Some(node) = outline.get(pending.node.index()) {
+            wp.node_shape(&node.shape, Stroke::new(1.5, colors::WAITING));
+        }
+    }
+    if live {
+        return;
+    }
+    if let Some(node) = snap.current.and_then(|c| outline.get(c.index())) {
+        wp.node_shape(&node.shape, Stroke::new(3.0, colors::CURRENT));
+    }
+    if let Some(Event::PrimitiveTest { prim, .. }) = snap.event {
+        prim_stroke(lab, prim, 4.0, colors::CURRENT, wp);
+    }
+    let q = &rec.question;
+    for &(prim, value) in &snap.best {
+        match q.task {
+            Task::FirstHit | Task::AnyHit | Task::AllHits => {
+                if let Some(ray) = q.ray {
+                    wp.dot(ray.at(value), 6.0, colors::ANSWER);
+                }
+            }
+            Task::Nearest | Task::Range => {
+                let (Some(p), Some(s)) = (q.point, lab.prims().segments.get(prim as usize)) else {
+                    continue;
+                };
+                let c = s.closest_point(p);
+                wp.line(p, c, Stroke::new(1.5, colors::ANSWER));
+                wp.dot(c, 4.0, colors::ANSWER);
+            }
+            Task::Build => {}
+        }
+    }
+    if let (Some(p), Some(&(_, d)), Task::Nearest) = (q.point, snap.best.last(), q.task) {
+        let r = wp.screen.screen_length(d);
+        wp.ring(p, r, Stroke::new(1.0, colors::ANSWER.gamma_multiply(0.6)));
+    }
+}
+
+/// A build in progress: the nodes made so far, the current one, its split and which side
+/// each of its primitives goes to.
+pub(super) fn draw_build_state(lab: &Lab2d, lane: &Lane<Segment2>, wp: &mut WorldPainter<'_>) {
+    let (Some((_, outline)), Some(snap)) = (built(lab, lane), &lane.snapshot) else {
+        return;
+    };
+    let stroke = Stroke::new(1.0, colors::STRUCTURE);
+    for (node, _) in outline.iter().zip(&snap.existing).filter(|(_, e)| **e) {
+        wp.node_shape(&node.shape, stroke);
+    }
+    let Some(current) = snap.current.and_then(|c| outline.get(c.index())) else {
+        return;
+    };
+    match (snap.split, current.children.as_slice()) {
+        (Some(split), [first, second, ..]) if split.node == current.id => {
+            for p in subtree_primitives(outline, *first) {
+                prim_stroke(lab, p, 2.5, colors::FIRST_SIDE, wp);
+            }
+            for p in subtree_primitives(outline, *second) {
+                prim_stroke(lab, p, 2.5, colors::SECOND_SIDE, wp);
+            }
+            let region = current.shape.aabb();
+            if let Some((a, b)) = clipped_plane(split.normal, split.offset, &region, &[]) {
+                wp.line(a, b, Stroke::new(2.5, colors::CURRENT));
+            }
+        }
+        _ => {
+            for p in subtree_primitives(outline, current.id) {
+                prim_stroke(lab, p, 2.5, colors::TESTED, wp);
+            }
+        }
+    }
+    wp.node_shape(&current.shape, Stroke::new(3.0, colors::CURRENT));
+}
+
+/// The node hovered in the tree diagram or on the canvas, and its primitives.
+pub(super) fn draw_hovered(
+    lab: &Lab2d,
+    lane: &Lane<Segment2>,
+    node: NodeId,
+    wp: &mut WorldPainter<'_>,
+) {
+    let Some((_, outline)) = built(lab, lane) else {
+        return;
+    };
+    let Some(o) = outline.get(node.index()) else {
+        return;
+    };
+    wp.node_fill(&o.shape, colors::SELECTED.gamma_multiply(0.12));
+    wp.node_shape(&o.shape, Stroke::new(2.5, colors::SELECTED));
+    for p in subtree_primitives(outline, node) {
+        prim_stroke(lab, p, 2.5, colors::SELECTED, wp);
+    }
+}
+
+/// The deepest node whose region holds `p` (for BVHs, whose volume does; the deepest,
+/// smallest one when volumes overlap).
+pub fn node_at(outline: &[NodeOutline<Vec2>], p: Vec2, max_depth: u32) -> Option<NodeId> {
+    outline
+        .iter()
+        .filter(|n| n.depth <= max_depth && shape_contains(&n.shape, p))
+        .max_by(|a, b| {
+            a.depth
+                .cmp(&b.depth)
+                .then(area(&b.shape).total_cmp(&area(&a.shape)))
+        })
+        .map(|n| n.id)
+}
+
+fn shape_contains(shape: &bvhlab::NodeShape<Vec2>, p: Vec2) -> bool {
+    use bvhlab::BoundingVolume;
+    match shape {
+        bvhlab::NodeShape::Aabb(b) => b.contains(p),
+        bvhlab::NodeShape::Sphere(s) => s.contains(p),
+        bvhlab::NodeShape::Obb(o) => o.contains(p),
+    }
+}
+
+fn area(shape: &bvhlab::NodeShape<Vec2>) -> f32 {
+    let b = shape.aabb();
+    let d = b.max - b.min;
+    d.x * d.y
+}

@@ -1,0 +1,316 @@
+//! The 3D half: the mesh (built-in, or a file the student opened), the orbit camera, the ray
+//! and the query point, what is drawn, the heat map's settings, and the structures ([`Half`])
+//! built on the mesh's triangles. Its rules ([`Lab3d::apply`]) say what each [`Action3d`]
+//! changes besides itself.
+//!
+//! A mesh loads on the frame after it is asked for (so the page can say "loading" first),
+//! and a big mesh's BVH builds a slice per frame ([`Action::Tick`](super::Action::Tick)).
+
+use bvhlab::glam::Vec3;
+use bvhlab::{Ray3, Triangle3};
+
+use super::Note;
+use super::action::Action3d;
+use super::half::Half;
+use super::heat::HeatSettings;
+use super::lane::BuildBudget;
+use super::mesh::{self, Mesh3d, MeshSource};
+use super::orbit_camera::OrbitCamera;
+use super::structures::{BuildSettings, StructureKind};
+use super::tools::Tool3d;
+
+/// The built-in mesh the 3D view opens with.
+pub const DEFAULT_MESH: &str = "bunny";
+
+/// Milliseconds of build work per frame: enough to finish a small mesh at once, little
+/// enough that the page stays responsive during a big one.
+const BUILD_BUDGET_MS: f64 = 25.0;
+/// The most build work per frame when frames are slow anyway (software rendering of a big
+/// mesh takes hundreds of milliseconds a frame): half the frame time, up to this.
+const SLOW_FRAME_BUILD_BUDGET_MS: f64 = 250.0;
+
+/// The build work to do this frame, given the median frame interval: 25 ms, or half a slow
+/// frame, so that a build keeps pace with a view that takes long to draw.
+pub fn build_budget_ms(frame_ms: Option<f64>) -> f64 {
+    frame_ms.map_or(BUILD_BUDGET_MS, |ms| {
+        (ms * 0.5).clamp(BUILD_BUDGET_MS, SLOW_FRAME_BUILD_BUDGET_MS)
+    })
+}
+
+/// What the 3D view shows besides the mesh.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Display3d {
+    /// Draw the structure's nodes.
+    pub structure: bool,
+    /// Which level of nodes to draw (0 is the root).
+    pub depth: u32,
+    /// Draw the mesh translucent, so volumes inside show.
+    pub xray: bool,
+    /// Colour the nodes the query visited, culled and pruned.
+    pub marks: bool,
+}
+
+impl Default for Display3d {
+    fn default() -> Self {
+        Self {
+            structure: true,
+            depth: 3,
+            xray: true,
+            marks: true,
+        }
+    }
+}
+
+/// What to put back over a mesh once it has loaded, instead of the defaults: a saved state's
+/// camera, ray, point and radius, or the ray and point the page's address asks for (the
+/// camera then frames the mesh as usual).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Placement3d {
+    /// The camera; `None` frames the mesh.
+    pub camera: Option<OrbitCamera>,
+    /// The ray; `None` leaves none (or, when the camera frames the mesh, one through the
+    /// middle of the view).
+    pub ray: Option<Ray3>,
+    /// The query point; `None` as for the ray.
+    pub point: Option<Vec3>,
+    /// The range query's radius; `None` takes a tenth of the mesh's size.
+    pub radius: Option<f32>,
+}
+
+/// The 3D half of the lab.
+pub struct Lab3d {
+    /// The mesh shown, once one is loaded.
+    pub mesh: Option<Mesh3d>,
+    /// A mesh to load on the next frame (so "loading…" shows first).
+    pub pending: Option<MeshSource>,
+    /// A saved camera, ray, point and radius to put back once the pending mesh has loaded,
+    /// instead of framing it afresh (a reload, a scene file, a share link).
+    pub placement: Option<Placement3d>,
+    /// A mesh was loaded and the view has not framed it yet ([`Action3d::Frame`]).
+    pub framing: bool,
+    /// The camera.
+    pub camera: OrbitCamera,
+    /// What a click does.
+    pub tool: Tool3d,
+    /// The ray, once cast.
+    pub ray: Option<Ray3>,
+    /// The query point, once placed.
+    pub point: Option<Vec3>,
+    /// What is drawn.
+    pub display: Display3d,
+    /// The traversal-cost heat map's settings.
+    pub heat: HeatSettings,
+    /// The last message about the mesh (a load or build that failed, and why).
+    pub message: Option<String>,
+    /// The structures, the question and playback.
+    pub half: Half<Triangle3>,
+    revisions: u64,
+}
+
+impl Default for Lab3d {
+    fn default() -> Self {
+        Self {
+            mesh: None,
+            pending: Some(MeshSource::Builtin(DEFAULT_MESH.to_owned())),
+            placement: None,
+            framing: false,
+            camera: OrbitCamera::default(),
+            tool: Tool3d::Ray,
+            ray: None,
+            point: None,
+            display: Display3d::default(),
+            heat: HeatSettings::default(),
+            message: None,
+            half: Half::new(
+                BuildSettings {
+                    kind: StructureKind::AabbTree,
+                    bvh_split: bvhlab::structure::SplitMethod::BinnedSah,
+                    leaf_size: 4,
+                    ..BuildSettings::default()
+                },
+                0.1,
+            ),
+            revisions: 0,
+        }
+    }
+}
+
+impl Lab3d {
+    /// Whether a load or a build is under way (the caller keeps repainting).
+    pub fn busy(&self) -> bool {
+        self.pending.is_some() || self.half.lanes().any(|l| l.job.is_some())
+    }
+
+    /// Whether the camera, ray and point belong to the mesh shown: it has loaded, nothing else
+    /// is loading, and the view has framed it.
+    pub fn placed(&self) -> bool {
+        self.mesh.is_some() && self.pending.is_none() && !self.framing
+    }
+
+    /// The mesh's triangles (none before one loads).
+    pub fn triangles(&self) -> &[Triangle3] {
+        self.mesh.as_ref().map_or(&[], |m| m.mesh.triangles())
+    }
+
+    /// The mesh's revision (0 before one loads).
+    pub fn revision(&self) -> u64 {
+        self.mesh.as_ref().map_or(0, |m| m.revision)
+    }
+
+    /// The mesh's triangle `index`.
+    pub fn triangle(&self, index: u32) -> Option<Triangle3> {
+        self.triangles().get(index as usize).copied()
+    }
+
+    /// Loads a mesh asked for and gives the builds `build_ms` milliseconds (a frame's
+    /// work), then brings the recordings up to date.
+    pub(super) fn tick(&mut self, build_ms: f64) {
+        if let Some(source) = self.pending.take() {
+            self.load(&source);
+        }
+        self.refresh(BuildBudget::Millis(build_ms));
+    }
+
+    /// Brings the recordings up to date (builds advance only in [`Lab3d::tick`]).
+    pub(super) fn refresh(&mut self, budget: BuildBudget) {
+        let Some(mesh) = &self.mesh else { return };
+        let revision = mesh.revision;
+        let triangles = mesh.mesh.triangles();
+        self.half
+            .refresh(triangles, revision, self.ray, self.point, budget);
+        if let Some(e) = &self.half.lane.build_error
+            && budget != BuildBudget::None
+            && self.message.as_ref() != Some(e)
+        {
+            self.message = Some(e.clone());
+        }
+    }
+
+    fn load(&mut self, source: &MeshSource) {
+        self.revisions += 1;
+        match mesh::load(source, self.revisions) {
+            Ok(mesh) => {
+                let saved = self.placement.take().unwrap_or_default();
+                self.half.radius = saved.radius.unwrap_or(mesh.size() * 0.1);
+                self.ray = saved.ray;
+                self.point = saved.point;
+                match saved.camera {
+                    Some(camera) => {
+                        self.camera = camera;
+                        self.framing = false;
+                    }
+                    // The camera (and a missing ray and point) are placed by the view, which
+                    // knows its shape.
+                    None => self.framing = true,
+                }
+                self.message = (!mesh.warnings.is_empty()).then(|| mesh.warnings.join(" "));
+                self.mesh = Some(mesh);
+            }
+            Err(e) => {
+                self.placement = None;
+                let kept = self
+                    .mesh
+                    .as_ref()
+                    .map_or(String::new(), |m| format!(" {} stays open.", m.name));
+                self.message = Some(format!("{e}{kept}"));
+            }
+        }
+    }
+
+    /// Frames the camera on the mesh for a view of `aspect` (width / height), and puts a
+    /// first ray through the middle of the view and the point beside the mesh, so the view
+    /// has answers to show straight away. Done once per loaded mesh.
+    fn frame(&mut self, aspect: f32) {
+        let Some(mesh) = &self.mesh else { return };
+        if !std::mem::take(&mut self.framing) || !(aspect.is_finite() && aspect > 0.0) {
+            return;
+        }
+        self.camera.frame_in(&mesh.bounds(), aspect);
+        let size = mesh.size();
+        if self.ray.is_none() {
+            self.ray = Ray3::new(self.camera.eye(), self.camera.basis().forward).ok();
+        }
+        if self.point.is_none() {
+            // Beside the mesh, to the right in the view, where the gizmo is on screen.
+            self.point = Some(self.camera.target + self.camera.basis().right * size * 0.35);
+        }
+    }
+
+    /// Carries out `action`, with the rules that go with it; what the status line says
+    /// after it.
+    ///
+    /// # Errors
+    /// Why the action cannot apply; nothing changed then.
+    pub(super) fn apply(&mut self, action: Action3d) -> Result<Note, String> {
+        match action {
+            Action3d::SetTool(tool) => {
+                self.tool = tool;
+                match tool {
+                    Tool3d::Ray => self.half.ask_about_ray(),
+                    Tool3d::Point => self.half.ask_about_point(),
+                }
+            }
+            Action3d::OpenMesh(source) => {
+                if let MeshSource::Builtin(slug) = &source
+                    && !bvhlab_meshio::builtin::list()
+                        .iter()
+                        .any(|b| b.slug == slug)
+                {
+                    return Err(format!("the lab has no built-in mesh \"{slug}\""));
+                }
+                self.pending = Some(source);
+                return Ok(Note::Clear);
+            }
+            Action3d::SetCamera(camera) => {
+                if !camera.is_valid() {
+                    return Err(
+                        "the camera must have a finite target and angles, and a positive distance"
+                            .to_owned(),
+                    );
+                }
+                self.camera = camera;
+            }
+            Action3d::Frame { aspect } => self.frame(aspect),
+            Action3d::SetRay(ray) => {
+                // A mesh still loading takes the ray once it has loaded.
+                if self.pending.is_some() {
+                    self.placement.get_or_insert_default().ray = ray;
+                } else {
+                    self.ray = ray;
+                }
+                if ray.is_some() {
+                    self.half.ask_about_ray();
+                }
+            }
+            Action3d::SetPoint(point) => {
+                if point.is_some_and(|p| !p.is_finite()) {
+                    return Err("the query point must be a finite point".to_owned());
+                }
+                if self.pending.is_some() {
+                    self.placement.get_or_insert_default().point = point;
+                } else {
+                    self.point = point;
+                }
+                if point.is_some() {
+                    self.half.ask_about_point();
+                }
+            }
+            Action3d::SetDisplay(display) => self.display = display,
+            Action3d::SetHeat(heat) => self.heat = heat,
+        }
+        Ok(Note::Keep)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn slow_frames_give_the_build_more_time_up_to_a_cap() {
+        assert_eq!(build_budget_ms(None), BUILD_BUDGET_MS);
+        assert_eq!(build_budget_ms(Some(16.0)), BUILD_BUDGET_MS);
+        assert_eq!(build_budget_ms(Some(300.0)), 150.0);
+        assert_eq!(build_budget_ms(Some(5_000.0)), SLOW_FRAME_BUILD_BUDGET_MS);
+    }
+}

@@ -1,0 +1,580 @@
+//! Stepping through a recording: the transport (play, pause, step, speed) and the state of
+//! the algorithm after any number of its events.
+//!
+//! [`Snapshot::at`] folds the first `step` events of a [`Recording`] into what the student
+//! sees: the current node, the nodes visited, culled and pruned so far, the traversal stack
+//! (or priority queue, or the grid cells along the ray), the best answer so far, and the
+//! counters. It is a pure function of the events, so stepping back is folding a shorter
+//! prefix, and the same step of two structures can be shown side by side.
+
+use bvhlab::glam::Vec2;
+use bvhlab::structure::{PrimitiveResult, PruneReason};
+use bvhlab::{Event, NodeId, Vector};
+
+use super::outcome::NodeMarks;
+use super::recording::Recording;
+use super::structures::StructureKind;
+use crate::pseudocode::Task;
+
+/// The transport: where playback is and whether it runs.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Playback {
+    /// How many events are shown (0 to the recording's length).
+    pub step: usize,
+    /// Stay at the end when the recording changes (live mode while dragging).
+    pub at_end: bool,
+    /// Whether it advances by itself.
+    pub playing: bool,
+    /// Events per second while playing.
+    pub speed: f32,
+    /// Fractional events accumulated between frames.
+    carry: f64,
+}
+
+impl Default for Playback {
+    fn default() -> Self {
+        Self {
+            step: 0,
+            at_end: true,
+            playing: false,
+            speed: 4.0,
+            carry: 0.0,
+        }
+    }
+}
+
+impl Playback {
+    /// Keeps the step inside a (new) recording of `len` events: at the end in live mode,
+    /// else where it was, as far as the new recording goes.
+    pub fn fit(&mut self, len: usize) {
+        if self.at_end {
+            self.step = len;
+        } else {
+            self.step = self.step.min(len);
+        }
+    }
+
+    /// Goes to `step` (clamped), leaving live mode unless it is the end.
+    pub fn go(&mut self, step: usize, len: usize) {
+        self.step = step.min(len);
+        self.at_end = self.step == len;
+        if self.at_end {
+            self.playing = false;
+        }
+    }
+
+    /// Starts playing; from the start when at the end.
+    pub fn play(&mut self, len: usize) {
+        if self.step >= len {
+            self.step = 0;
+        }
+        self.at_end = false;
+        self.playing = true;
+        self.carry = 0.0;
+    }
+
+    /// The step shown for a recording of `len` events (the end in live mode).
+    pub fn shown(&self, len: usize) -> usize {
+        if self.at_end { len } else { self.step.min(len) }
+    }
+
+    /// Moves `delta` steps from the one shown, and stops playing.
+    pub fn step_by(&mut self, delta: isize, len: usize) {
+        self.playing = false;
+        self.go(self.shown(len).saturating_add_signed(delta), len);
+    }
+
+    /// Play or pause.
+    pub fn toggle(&mut self, len: usize) {
+        if self.playing {
+            self.playing = false;
+        } else {
+            self.play(len);
+        }
+    }
+
+    /// Advances a playing transport by `seconds`; true when the step changed.
+    pub fn advance(&mut self, seconds: f64, len: usize) -> bool {
+        if !self.playing {
+            return false;
+        }
+        self.carry += seconds.max(0.0) * f64::from(self.speed.max(0.0));
+        let whole = self.carry.floor();
+        if whole < 1.0 {
+            return false;
+        }
+        self.carry -= whole;
+        let before = self.step;
+        let next = self.step.saturating_add(whole as usize);
+        self.go(next, len);
+        self.step != before
+    }
+}
+
+/// Node, bound and primitive counts.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Counters {
+    /// Nodes (or cells) entered.
+    pub nodes: u64,
+    /// Bounding-volume, cell or plane tests.
+    pub bound_tests: u64,
+    /// Exact primitive tests.
+    pub prim_tests: u64,
+    /// Primitive tests skipped by mailboxing.
+    pub mailbox_skips: u64,
+}
+
+impl Counters {
+    /// What one event adds.
+    pub fn of<V: Vector>(event: &Event<V>) -> Self {
+        let mut c = Self::default();
+        match event {
+            Event::EnterNode { .. } | Event::CellEnter { .. } => c.nodes = 1,
+            // A k-d or BSP tree's plane test is its bound test (the core counts it so).
+            Event::RayBoundTest { .. }
+            | Event::DistanceBoundTest { .. }
+            | Event::PlaneCrossed { .. } => c.bound_tests = 1,
+            Event::PrimitiveTest {
+                result: PrimitiveResult::AlreadyTested,
+                ..
+            } => c.mailbox_skips = 1,
+            Event::PrimitiveTest { .. } => c.prim_tests = 1,
+            _ => {}
+        }
+        c
+    }
+
+    fn add(&mut self, other: Self) {
+        self.nodes += other.nodes;
+        self.bound_tests += other.bound_tests;
+        self.prim_tests += other.prim_tests;
+        self.mailbox_skips += other.mailbox_skips;
+    }
+}
+
+/// A node waiting on the traversal stack or queue.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Pending {
+    /// The node.
+    pub node: NodeId,
+    /// What it is ordered by: entry `t` or bound distance.
+    pub key: f32,
+    /// Which node queued it.
+    pub parent: NodeId,
+}
+
+/// How the waiting nodes are kept.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Frontier {
+    /// A stack: the last queued is taken first (depth first, near child first).
+    Stack,
+    /// A priority queue: the smallest key is taken first (best first).
+    Queue,
+    /// Recursion: the slides' recursive pseudocode (the calls under way are
+    /// [`Snapshot::calls`]).
+    Calls,
+}
+
+/// A grid cell the ray entered.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CellStep {
+    /// The cell.
+    pub cell: NodeId,
+    /// Its integer coordinates.
+    pub coords: [u32; 3],
+    /// Where the ray enters it.
+    pub t_enter: f32,
+    /// Where it leaves it.
+    pub t_exit: f32,
+}
+
+/// A build's split, as reported.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SplitStep<V: Vector = Vec2> {
+    /// The node split.
+    pub node: NodeId,
+    /// The plane's normal.
+    pub normal: V,
+    /// The plane's offset.
+    pub offset: f32,
+    /// Primitives below the plane.
+    pub left: u32,
+    /// Primitives above.
+    pub right: u32,
+    /// The split's SAH cost, if the builder has a cost model.
+    pub cost: Option<f32>,
+}
+
+/// The state of the algorithm after the first `step` events (in 2D by default).
+#[derive(Clone, Debug)]
+pub struct Snapshot<V: Vector = Vec2> {
+    /// How many events are folded in.
+    pub step: usize,
+    /// Nodes visited, culled and pruned, and primitives tested, so far.
+    pub marks: NodeMarks,
+    /// The node the last event concerned.
+    pub current: Option<NodeId>,
+    /// The last event.
+    pub event: Option<Event<V>>,
+    /// The nodes waiting, next first.
+    pub frontier: Vec<Pending>,
+    /// How they are kept.
+    pub frontier_kind: Option<Frontier>,
+    /// The path from the root to the current node: for the slides' recursive versions, the
+    /// calls under way.
+    pub calls: Vec<NodeId>,
+    /// Grid: the cells the ray entered so far, in order.
+    pub cells: Vec<CellStep>,
+    /// The best answers so far, best first: (primitive, t or distance).
+    pub best: Vec<(u32, f32)>,
+    /// Counters so far.
+    pub so_far: Counters,
+    /// What the last event added.
+    pub this_step: Counters,
+    /// Builds: which nodes exist so far (indexed by node id).
+    pub existing: Vec<bool>,
+    /// Builds: the current node's split, once chosen.
+    pub split: Option<SplitStep<V>>,
+}
+
+impl<V: Vector> Default for Snapshot<V> {
+    fn default() -> Self {
+        Self {
+            step: 0,
+            marks: NodeMarks::default(),
+            current: None,
+            event: None,
+            frontier: Vec::new(),
+            frontier_kind: None,
+            calls: Vec::new(),
+            cells: Vec::new(),
+            best: Vec::new(),
+            so_far: Counters::default(),
+            this_step: Counters::default(),
+            existing: Vec::new(),
+            split: None,
+        }
+    }
+}
+
+impl<V: Vector> Snapshot<V> {
+    /// Brings `snapshot` to the playback's step of `recording` (over a structure of
+    /// `node_count` nodes of `kind`), folding again only when the step changed; clears it
+    /// without a recording.
+    pub fn follow(
+        snapshot: &mut Option<Self>,
+        recording: Option<&Recording<V>>,
+        kind: StructureKind,
+        node_count: usize,
+        playback: &Playback,
+    ) {
+        let Some(rec) = recording else {
+            *snapshot = None;
+            return;
+        };
+        let step = playback.shown(rec.events.len());
+        if snapshot.as_ref().is_none_or(|s| s.step != step) {
+            *snapshot = Some(Self::at(rec, kind, step, node_count));
+        }
+    }
+
+    /// Folds the first `step` events of `recording` over a structure of `node_count` nodes.
+    pub fn at(
+        recording: &Recording<V>,
+        kind: StructureKind,
+        step: usize,
+        node_count: usize,
+    ) -> Self {
+        let events = &recording.events[..step.min(recording.events.len())];
+        let task = recording.question.task;
+        let mut s = Self {
+            step: events.len(),
+            marks: NodeMarks::from_events(events, node_count),
+            frontier_kind: frontier_kind(kind, task, recording.question.variant),
+            ..Self::default()
+        };
+        if task == Task::Build {
+            s.existing = vec![false; node_count];
+        }
+        let k = match task {
+            Task::Nearest => recording.question.k.max(1),
+            Task::AllHits | Task::Range => usize::MAX,
+            _ => 1,
+        };
+        let mut group = 0u64;
+        let mut last_parent = None;
+        // (group, rank, entry) for stacks.
+        let mut waiting: Vec<(u64, u32, Pending)> = Vec::new();
+        for event in events {
+            s.so_far.add(Counters::of(event));
+            s.current = node_of(event).or(s.current);
+            match *event {
+                Event::ChildQueued {
+                    parent,
+                    child,
+                    key,
+                    rank,
+                } => {
+                    if last_parent != Some(parent) || rank == 0 {
+                        group += 1;
+                        last_parent = Some(parent);
+                    }
+                    waiting.push((
+                        group,
+                        rank,
+                        Pending {
+                            node: child,
+                            key,
+                            parent,
+                        },
+                    ));
+                }
+                Event::EnterNode { node, depth } => {
+                    s.calls.truncate(depth as usize);
+                    s.calls.push(node);
+                    waiting.retain(|w| w.2.node != node);
+                    last_parent = None;
+                }
+                Event::Prune { node, .. } => waiting.retain(|w| w.2.node != node),
+                Event::CellEnter {
+                    cell,
+                    coords,
+                    t_enter,
+                    t_exit,
+                } => s.cells.push(CellStep {
+                    cell,
+                    coords,
+                    t_enter,
+                    t_exit,
+                }),
+                // The best so far, from the tests themselves (brute force reports no
+                // NewBest for every query): the nearest hits, the k smallest distances,
+                // everything inside the range.
+                Event::PrimitiveTest { prim, result } => match result {
+                    PrimitiveResult::Hit(t) => offer(&mut s.best, prim, t, k),
+                    PrimitiveResult::Distance(d) => offer(&mut s.best, prim, d, k),
+                    PrimitiveResult::Overlap => offer(&mut s.best, prim, 0.0, k),
+                    _ => {}
+                },
+                Event::BuildNode { .. } | Event::BuildSplit { .. } | Event::BuildLeaf { .. } => {
+                    s.apply_build(event);
+                }
+                _ => {}
+            }
+        }
+        if task == Task::AllHits {
+            // All hits are offered as they are found; the answer is every one of them.
+            s.best
+                .sort_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)));
+        }
+        s.this_step = events.last().map(Counters::of).unwrap_or_default();
+        s.event = events.last().copied();
+        s.frontier = order(waiting, s.frontier_kind);
+        s
+    }
+
+    /// A build event: nodes come into existence, and the current node's split is shown
+    /// until its first child is made.
+    fn apply_build(&mut self, event: &Event<V>) {
+        let s = self;
+        match *event {
+            Event::BuildNode { node, .. } => {
+                if let Some(slot) = s.existing.get_mut(node.index()) {
+                    *slot = true;
+                }
+                s.split = None;
+            }
+            Event::BuildSplit {
+                node,
+                normal,
+                offset,
+                left,
+                right,
+                cost,
+            } => {
+                s.split = Some(SplitStep {
+                    node,
+                    normal,
+                    offset,
+                    left,
+                    right,
+                    cost,
+                });
+            }
+            Event::BuildLeaf { node, .. } => {
+                // A grid reports its cells as leaves only.
+                if let Some(slot) = s.existing.get_mut(node.index()) {
+                    *slot = true;
+                }
+                s.split = None;
+            }
+            _ => {}
+        }
+    }
+}
+
+/// The node an event is about.
+fn node_of<V: Vector>(event: &Event<V>) -> Option<NodeId> {
+    match *event {
+        Event::EnterNode { node, .. }
+        | Event::RayBoundTest { node, .. }
+        | Event::DistanceBoundTest { node, .. }
+        | Event::Prune { node, .. }
+        | Event::PlaneCrossed { node, .. }
+        | Event::BuildNode { node, .. }
+        | Event::BuildSplit { node, .. }
+        | Event::BuildLeaf { node, .. } => Some(node),
+        Event::CellEnter { cell, .. } => Some(cell),
+        _ => None,
+    }
+}
+
+/// How `kind` keeps the nodes it has yet to visit for `task`.
+fn frontier_kind(
+    kind: StructureKind,
+    task: Task,
+    variant: crate::pseudocode::Variant,
+) -> Option<Frontier> {
+    use crate::pseudocode::Variant;
+    match (kind, task) {
+        (_, Task::Build) | (StructureKind::BruteForce | StructureKind::Grid, _) => None,
+        _ if variant != Variant::Full => Some(Frontier::Calls),
+        (StructureKind::Quadtree, Task::Nearest) => Some(Frontier::Queue),
+        _ => Some(Frontier::Stack),
+    }
+}
+
+/// The waiting nodes, next first.
+fn order(mut waiting: Vec<(u64, u32, Pending)>, kind: Option<Frontier>) -> Vec<Pending> {
+    match kind {
+        Some(Frontier::Queue) => {
+            waiting.sort_by(|a, b| a.2.key.total_cmp(&b.2.key));
+        }
+        // Later groups are on top of the stack; within a group, rank 0 is taken first.
+        _ => waiting.sort_by(|a, b| b.0.cmp(&a.0).then(a.1.cmp(&b.1))),
+    }
+    waiting.into_iter().map(|w| w.2).collect()
+}
+
+/// Keeps the `k` best (smallest value, then primitive) distinct primitives.
+fn offer(best: &mut Vec<(u32, f32)>, prim: u32, value: f32, k: usize) {
+    best.retain(|b| b.0 != prim);
+    let at = best
+        .iter()
+        .position(|b| value.total_cmp(&b.1).then(prim.cmp(&b.0)).is_lt())
+        .unwrap_or(best.len());
+    best.insert(at, (prim, value));
+    best.truncate(k);
+}
+
+/// A sentence for an event, in the lecture's words.
+pub fn describe<V: Vector>(event: &Event<V>) -> String {
+    match *event {
+        Event::EnterNode { node, depth } => format!("enter node {} (depth {depth})", node.0),
+        Event::RayBoundTest { node, interval } => match interval {
+            Some((a, b)) => format!(
+                "ray meets node {}'s volume for t in [{a:.3}, {b:.3}]",
+                node.0
+            ),
+            None => format!("ray misses node {}'s volume", node.0),
+        },
+        Event::DistanceBoundTest { node, distance } => {
+            format!("node {}'s volume is {distance:.3} from the point", node.0)
+        }
+        Event::ChildQueued {
+            parent,
+            child,
+            key,
+            rank,
+        } => format!(
+            "queue child {} of node {} (key {key:.3}, visit order {})",
+            child.0,
+            parent.0,
+            rank + 1
+        ),
+        Event::Prune { node, reason } => format!("skip node {}: {}", node.0, why(reason)),
+        Event::PrimitiveTest { prim, result } => match result {
+            PrimitiveResult::Hit(t) => format!("test primitive {prim}: hit at t = {t:.3}"),
+            PrimitiveResult::Miss => format!("test primitive {prim}: miss"),
+            PrimitiveResult::Distance(d) => format!("test primitive {prim}: distance {d:.3}"),
+            PrimitiveResult::Overlap => format!("test primitive {prim}: inside the range"),
+            PrimitiveResult::NoOverlap => format!("test primitive {prim}: outside the range"),
+            PrimitiveResult::AlreadyTested => {
+                format!("primitive {prim} was already tested in another cell (mailbox)")
+            }
+        },
+        Event::NewBest { prim, value } => format!("new best: primitive {prim} at {value:.3}"),
+        Event::HitBeyondRegion { prim, t, t_exit } => format!(
+            "primitive {prim} is hit at t = {t:.3}, beyond this region (exits at {t_exit:.3}): keep looking"
+        ),
+        Event::CellEnter {
+            coords,
+            t_enter,
+            t_exit,
+            ..
+        } => {
+            let cell = if V::DIM == 3 {
+                format!("({}, {}, {})", coords[0], coords[1], coords[2])
+            } else {
+                format!("({}, {})", coords[0], coords[1])
+            };
+            format!("enter cell {cell} for t in [{t_enter:.3}, {t_exit:.3}]")
+        }
+        Event::PlaneCrossed { node, t } => {
+            format!("the ray crosses node {}'s plane at t = {t:.3}", node.0)
+        }
+        Event::BuildNode {
+            node, depth, prims, ..
+        } => format!(
+            "make node {} (depth {depth}) over {prims} primitives",
+            node.0
+        ),
+        Event::BuildSplit {
+            node,
+            normal,
+            offset,
+            left,
+            right,
+            ..
+        } => format!(
+            "split node {} by {}·p = {offset:.3}: {left} below, {right} above",
+            node.0,
+            plane_name(normal)
+        ),
+        Event::BuildLeaf { node, prims } => format!("node {} becomes a leaf of {prims}", node.0),
+        Event::PairTest { a, b, overlap } => format!("test pair ({a}, {b}): {overlap}"),
+        Event::NodePairTest { a, b, overlap } => {
+            format!("test nodes ({}, {}): {overlap}", a.0, b.0)
+        }
+    }
+}
+
+/// `x`, `y` or `z` for an axis-aligned plane's normal; the normal's coordinates otherwise.
+fn plane_name<V: Vector>(normal: V) -> String {
+    let axes = ["x", "y", "z"];
+    for (axis, name) in axes.iter().enumerate().take(V::DIM) {
+        let mut unit = V::ZERO;
+        unit.set_coord(axis, 1.0);
+        if normal == unit {
+            return (*name).to_owned();
+        }
+    }
+    let coords: Vec<String> = (0..V::DIM)
+        .map(|i| format!("{:.2}", normal.coord(i)))
+        .collect();
+    format!("({})", coords.join(", "))
+}
+
+fn why(reason: PruneReason) -> String {
+    match reason {
+        PruneReason::RayMissed => "the ray misses it".to_owned(),
+        PruneReason::BeyondBestHit { t_enter, best_t } => {
+            format!("the ray enters at t = {t_enter:.3}, beyond the best hit t = {best_t:.3}")
+        }
+        PruneReason::NoNearer { distance, best } => {
+            format!("its volume is {distance:.3} away, no nearer than the best {best:.3}")
+        }
+        PruneReason::NoOverlap => "it does not overlap the range".to_owned(),
+        PruneReason::AlreadyHit => "a hit was already found".to_owned(),
+    }
+}

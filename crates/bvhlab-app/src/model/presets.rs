@@ -1,0 +1,229 @@
+//! Ready-made scenes: the lecture's figures and random scenes of several sizes.
+
+use bvhlab::glam::Vec2;
+
+use super::scene::{Scene, Shape, ShapeKind};
+use super::structures::{BuildSettings, KdSplit, StructureKind};
+
+/// The preset scenes, in menu order.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Preset {
+    /// §2: one elongated, tilted object, where sphere, AABB, OBB and hull differ most.
+    BoundingVolumes,
+    /// §3, uniform grid: a long triangle that lands in several cells ("Duplicate Triangle").
+    DuplicateTriangle,
+    /// §3: a k-d tree on a handful of shapes.
+    KdHandful,
+    /// §3: a quadtree on a handful of shapes.
+    QuadtreeHandful,
+    /// 200 random segments: the scene the lab opens with.
+    #[default]
+    RandomSegments,
+    /// 300 random points.
+    RandomPoints,
+    /// 10,000 random segments: the lab must stay smooth.
+    TenThousand,
+}
+
+impl Preset {
+    /// Every preset, in menu order.
+    pub const ALL: [Self; 7] = [
+        Self::BoundingVolumes,
+        Self::DuplicateTriangle,
+        Self::KdHandful,
+        Self::QuadtreeHandful,
+        Self::RandomSegments,
+        Self::RandomPoints,
+        Self::TenThousand,
+    ];
+
+    /// A name for the menu.
+    pub fn label(self) -> &'static str {
+        match self {
+            Self::BoundingVolumes => "Bounding volumes compared (§2)",
+            Self::DuplicateTriangle => "Duplicate triangle in a grid (§3)",
+            Self::KdHandful => "k-d tree on a handful of shapes (§3)",
+            Self::QuadtreeHandful => "Quadtree on a handful of shapes (§3)",
+            Self::RandomSegments => "200 random segments",
+            Self::RandomPoints => "300 random points",
+            Self::TenThousand => "10,000 random segments",
+        }
+    }
+
+    /// A short name for links (`?preset=...` in the page's address).
+    pub fn slug(self) -> &'static str {
+        match self {
+            Self::BoundingVolumes => "bounding-volumes",
+            Self::DuplicateTriangle => "duplicate-triangle",
+            Self::KdHandful => "kd-tree",
+            Self::QuadtreeHandful => "quadtree",
+            Self::RandomSegments => "random-segments",
+            Self::RandomPoints => "random-points",
+            Self::TenThousand => "10k",
+        }
+    }
+
+    /// The preset with this [`slug`](Self::slug).
+    pub fn from_slug(slug: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|p| p.slug() == slug)
+    }
+
+    /// The scene, and the structure settings it is best seen with.
+    pub fn build(self) -> (Scene, BuildSettings) {
+        let settings = BuildSettings::default();
+        match self {
+            Self::BoundingVolumes => (Scene::from_shapes(vec![tilted_blob()]), settings),
+            Self::DuplicateTriangle => (
+                duplicate_triangle(),
+                BuildSettings {
+                    kind: StructureKind::Grid,
+                    grid_cells: 4,
+                    ..settings
+                },
+            ),
+            Self::KdHandful => (
+                handful(),
+                BuildSettings {
+                    kind: StructureKind::KdTree,
+                    kd_split: KdSplit::MedianRoundRobin,
+                    leaf_size: 1,
+                    ..settings
+                },
+            ),
+            Self::QuadtreeHandful => (
+                handful(),
+                BuildSettings {
+                    kind: StructureKind::Quadtree,
+                    leaf_size: 1,
+                    ..settings
+                },
+            ),
+            Self::RandomSegments => (random_segments(200, 20.0, 1.5, 1), settings),
+            Self::RandomPoints => (random_points(300, 20.0, 2), settings),
+            Self::TenThousand => (random_segments(10_000, 100.0, 1.5, 3), settings),
+        }
+    }
+}
+
+/// A small deterministic generator (`SplitMix64`, Steele, Lea and Flood, OOPSLA 2014): presets
+/// must look the same on every machine and every visit.
+struct SplitMix(u64);
+
+impl SplitMix {
+    fn next_unit(&mut self) -> f32 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^= z >> 31;
+        (z >> 40) as f32 / (1u64 << 24) as f32
+    }
+
+    fn range(&mut self, lo: f32, hi: f32) -> f32 {
+        lo + (hi - lo) * self.next_unit()
+    }
+}
+
+fn shape(kind: ShapeKind, points: &[[f32; 2]]) -> Shape {
+    Shape {
+        kind,
+        points: points.iter().map(|&[x, y]| Vec2::new(x, y)).collect(),
+    }
+}
+
+/// An elongated, tilted polygon: its AABB and centroid sphere are loose, its OBB tight.
+fn tilted_blob() -> Shape {
+    let (angle, a, b) = (0.5f32, 8.0f32, 2.2f32);
+    let (sin, cos) = angle.sin_cos();
+    let points = (0..14)
+        .map(|i| {
+            let s = i as f32 / 14.0 * std::f32::consts::TAU;
+            // A lopsided ellipse, so that the centroid is not the box centre.
+            let r = 1.0 + 0.25 * (2.0 * s).cos() + 0.15 * s.sin();
+            let (x, y) = (a * s.cos() * r, b * s.sin() * r);
+            Vec2::new(x * cos - y * sin, x * sin + y * cos)
+        })
+        .collect();
+    Shape {
+        kind: ShapeKind::Polygon,
+        points,
+    }
+}
+
+fn duplicate_triangle() -> Scene {
+    Scene::from_shapes(vec![
+        // The long triangle crossing several cells.
+        shape(ShapeKind::Polygon, &[[0.5, 0.5], [7.5, 4.0], [2.0, 3.0]]),
+        shape(ShapeKind::Polygon, &[[5.5, 0.5], [7.5, 0.6], [6.4, 1.6]]),
+        shape(ShapeKind::Polygon, &[[0.4, 6.0], [1.6, 5.8], [1.0, 7.5]]),
+        shape(ShapeKind::Polygon, &[[5.6, 6.2], [7.6, 7.6], [5.2, 7.4]]),
+    ])
+}
+
+fn handful() -> Scene {
+    Scene::from_shapes(vec![
+        shape(ShapeKind::Polygon, &[[1.0, 1.0], [3.0, 1.2], [2.0, 2.6]]),
+        shape(
+            ShapeKind::Polygon,
+            &[[6.0, 0.8], [7.4, 1.0], [7.0, 2.2], [6.2, 2.0]],
+        ),
+        shape(ShapeKind::Segment, &[[4.0, 4.0], [5.5, 5.2]]),
+        shape(ShapeKind::Polyline, &[[0.8, 6.0], [2.0, 7.2], [3.2, 6.4]]),
+        shape(ShapeKind::Polygon, &[[8.0, 6.0], [9.4, 6.6], [8.6, 7.8]]),
+        shape(ShapeKind::Segment, &[[1.2, 3.8], [2.2, 4.6]]),
+        shape(ShapeKind::Points, &[[5.0, 8.4], [6.2, 8.0], [9.0, 3.5]]),
+        shape(ShapeKind::Polygon, &[[7.6, 4.0], [8.6, 4.2], [8.2, 5.0]]),
+    ])
+}
+
+/// `n` segments of length up to `length` in a square of side `extent`.
+pub fn random_segments(n: usize, extent: f32, length: f32, seed: u64) -> Scene {
+    let mut rng = SplitMix(seed);
+    let shapes = (0..n)
+        .map(|_| {
+            let a = Vec2::new(rng.range(0.0, extent), rng.range(0.0, extent));
+            let angle = rng.range(0.0, std::f32::consts::TAU);
+            let len = rng.range(0.2, 1.0) * length;
+            let b = a + Vec2::from_angle(angle) * len;
+            Shape {
+                kind: ShapeKind::Segment,
+                points: vec![a, b],
+            }
+        })
+        .collect();
+    Scene::from_shapes(shapes)
+}
+
+/// One cloud of `n` points in a square of side `extent`.
+pub fn random_points(n: usize, extent: f32, seed: u64) -> Scene {
+    let mut rng = SplitMix(seed);
+    let points = (0..n)
+        .map(|_| Vec2::new(rng.range(0.0, extent), rng.range(0.0, extent)))
+        .collect();
+    Scene::from_shapes(vec![Shape {
+        kind: ShapeKind::Points,
+        points,
+    }])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn presets_are_valid_and_deterministic() {
+        for preset in Preset::ALL {
+            let (a, _) = preset.build();
+            let (b, _) = preset.build();
+            assert!(!a.shapes().is_empty(), "{preset:?}");
+            assert_eq!(a.shapes(), b.shapes(), "{preset:?}");
+            for s in a.shapes() {
+                Shape::new(s.kind, s.points.clone()).expect("preset shapes are valid");
+            }
+        }
+        assert_eq!(
+            Preset::TenThousand.build().0.primitives().segments.len(),
+            10_000
+        );
+    }
+}

@@ -1,0 +1,106 @@
+//! The panels beside the view. Each reads the lab and asks for changes with actions (it
+//! writes nothing of the lab's), as egui's demo app keeps its demos: a small trait
+//! ([`Panel`]), one file per panel, and one list per half ([`PANELS_2D`], [`PANELS_3D`]) in
+//! the lecture's order.
+//!
+//! - The controls (left): [`scene`], [`volumes`], [`structure`], [`queries`], [`save_share`]
+//!   in 2D; [`mesh`], [`structure`], [`ray_point`], [`heat`], [`save_share`] in 3D.
+//! - "Step through" (right): [`step_through`] (task, comparison, transport, export, and each
+//!   lane's recording at the step: [`recording`], with a build's split in [`split`]).
+//! - Below the view: the tree diagrams ([`tree`]); at the bottom, the status line
+//!   ([`status`]). [`export`]: the canvas, the 3D view and the tree as SVG or PNG.
+
+pub mod export;
+pub mod heat;
+pub mod mesh;
+pub mod queries;
+pub mod ray_point;
+pub mod recording;
+pub mod save_share;
+pub mod scene;
+pub mod split;
+pub mod status;
+pub mod step_through;
+pub mod structure;
+pub mod tree;
+pub mod volumes;
+
+use egui::{CollapsingHeader, Color32, RichText};
+
+use crate::model::{Action, Dimension};
+use crate::ui_state::Cx;
+
+/// One section of the controls.
+pub trait Panel {
+    /// Its heading.
+    fn title(&self) -> &'static str;
+    /// Draws it from the lab, asking for changes through `cx`.
+    fn show(&self, cx: &mut Cx<'_>, ui: &mut egui::Ui);
+}
+
+/// The 2D controls, in the lecture's order.
+pub const PANELS_2D: [&dyn Panel; 5] = [
+    &scene::Scene,
+    &volumes::Volumes,
+    &structure::Structure2d,
+    &queries::Queries,
+    &save_share::SaveShare,
+];
+
+/// The 3D controls.
+pub const PANELS_3D: [&dyn Panel; 5] = [
+    &mesh::Mesh,
+    &structure::Structure3d,
+    &ray_point::RayPoint,
+    &heat::Heat,
+    &save_share::SaveShare,
+];
+
+/// The controls column: what the lab is, the 2D / 3D switch, then the half's panels.
+pub fn controls(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
+    ui.heading("bvh-lab");
+    ui.label("Bounding volumes and spatial data structures, after the lecture's slides.");
+    dimension_switch(cx, ui);
+    let panels = match cx.lab.dimension() {
+        Dimension::Two => PANELS_2D,
+        Dimension::Three => PANELS_3D,
+    };
+    for panel in panels {
+        CollapsingHeader::new(panel.title())
+            .default_open(true)
+            .show(ui, |ui| panel.show(cx, ui));
+    }
+}
+
+/// The 2D / 3D switch.
+fn dimension_switch(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
+    ui.horizontal(|ui| {
+        let mut shown = cx.lab.dimension();
+        ui.selectable_value(&mut shown, Dimension::Two, "2D: segments");
+        ui.selectable_value(&mut shown, Dimension::Three, "3D: meshes");
+        if shown != cx.lab.dimension() {
+            cx.act(Action::Show(shown));
+        }
+    });
+    ui.separator();
+}
+
+/// A coloured dot and its meaning.
+pub fn legend(ui: &mut egui::Ui, color: Color32, text: String) {
+    ui.label(RichText::new("•").color(color));
+    ui.label(text);
+}
+
+/// A checkbox over a copy of a value: asks for `action(value)` when it is ticked or
+/// unticked.
+pub fn toggle<T: Copy>(
+    ui: &mut egui::Ui,
+    value: T,
+    field: impl FnOnce(&mut T) -> &mut bool,
+    text: &str,
+) -> Option<T> {
+    let mut copy = value;
+    ui.checkbox(field(&mut copy), text)
+        .changed()
+        .then_some(copy)
+}

@@ -1,0 +1,184 @@
+//! The 3D ray and query point: what a click does, their exact coordinates, k and the
+//! radius, and the answer with what it cost beside brute force.
+
+use bvhlab::Ray3;
+use bvhlab::glam::Vec3;
+use egui::RichText;
+
+use super::Panel;
+use crate::model::dimension::thousands;
+use crate::model::lab3d::Lab3d;
+use crate::model::mesh::Mesh3d;
+use crate::model::recording::Answer;
+use crate::model::tools::Tool3d;
+use crate::model::{Action, Action3d, HalfAction};
+use crate::paint::colors;
+use crate::pseudocode::Task;
+use crate::ui_state::Cx;
+
+/// The ray-and-point panel.
+pub struct RayPoint;
+
+impl Panel for RayPoint {
+    fn title(&self) -> &'static str {
+        "Ray and point"
+    }
+
+    fn show(&self, cx: &mut Cx<'_>, ui: &mut egui::Ui) {
+        query_section(cx, ui);
+    }
+}
+
+fn query_section(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
+    let lab = cx.lab.three();
+    ui.horizontal(|ui| {
+        ui.label("A click:");
+        let mut tool = lab.tool;
+        let ray = ui
+            .radio_value(&mut tool, Tool3d::Ray, "casts a ray")
+            .clicked();
+        let point = ui
+            .radio_value(&mut tool, Tool3d::Point, "places the point")
+            .clicked();
+        if ray || point {
+            cx.act(Action3d::SetTool(tool));
+        }
+    });
+    ui.label(
+        RichText::new("Drag to orbit, shift-drag to pan, scroll to zoom. Drag the gizmo's dots to move the ray or point; its coloured arrows move it along x, y or z.")
+            .small()
+            .weak(),
+    );
+    if let Some(ray) = lab.ray {
+        let mut origin = ray.origin();
+        let mut dir = ray.dir();
+        let a = vec3_editor(ui, "origin", &mut origin);
+        let b = vec3_editor(ui, "direction", &mut dir);
+        if a || b {
+            cx.act(match Ray3::new(origin, dir) {
+                Ok(r) => Action3d::SetRay(Some(r)).into(),
+                Err(e) => Action::SetMessage(Some(format!("That ray cannot be cast: {e}."))),
+            });
+        }
+    }
+    if let Some(mut p) = lab.point
+        && vec3_editor(ui, "point", &mut p)
+    {
+        cx.act(Action3d::SetPoint(Some(p)));
+    }
+    let half = &lab.half;
+    if half.task == Task::Nearest {
+        let mut k = half.k;
+        if ui
+            .add(egui::Slider::new(&mut k, 1..=16).text("k nearest"))
+            .changed()
+        {
+            cx.act(HalfAction::SetK(k));
+        }
+    }
+    if half.task == Task::Range {
+        let size = lab.mesh.as_ref().map_or(1.0, Mesh3d::size);
+        let mut radius = half.radius;
+        if ui
+            .add(
+                egui::Slider::new(&mut radius, 0.0..=size)
+                    .logarithmic(true)
+                    .text("radius"),
+            )
+            .changed()
+        {
+            cx.act(HalfAction::SetRadius(radius));
+        }
+    }
+    answer(lab, ui);
+}
+
+/// Three number fields; whether one changed.
+fn vec3_editor(ui: &mut egui::Ui, label: &str, v: &mut Vec3) -> bool {
+    ui.horizontal(|ui| {
+        ui.label(label);
+        let mut changed = false;
+        for (axis, c) in ["x", "y", "z"]
+            .into_iter()
+            .zip([&mut v.x, &mut v.y, &mut v.z])
+        {
+            // Each field is named for screen readers ("origin x", ...), and shows its axis.
+            let name = ui.label(RichText::new(axis).weak()).id;
+            changed |= ui
+                .add(egui::DragValue::new(c).speed(0.01).max_decimals(4))
+                .labelled_by(name)
+                .changed();
+        }
+        changed
+    })
+    .inner
+}
+
+/// The answer and what it cost, against brute force.
+fn answer(lab: &Lab3d, ui: &mut egui::Ui) {
+    let rec = match &lab.half.lane.recording {
+        Some(Ok(rec)) => rec,
+        Some(Err(why)) => {
+            ui.colored_label(colors::PRUNED, why);
+            return;
+        }
+        None => return,
+    };
+    match &rec.answer {
+        Answer::Hit(Some(hit)) => {
+            let ray = rec.question.ray;
+            ui.label(format!(
+                "first hit: triangle {} at t = {:.4}",
+                hit.prim, hit.t
+            ));
+            if let (Some(ray), Some(tri)) = (ray, lab.triangle(hit.prim as u32)) {
+                let p = ray.at(hit.t);
+                let n = bvhlab::Primitive::normal(&tri).normalize_or_zero();
+                ui.label(format!("point ({:.3}, {:.3}, {:.3})", p.x, p.y, p.z));
+                ui.label(format!("normal ({:.3}, {:.3}, {:.3})", n.x, n.y, n.z));
+            }
+        }
+        Answer::Hit(None) => {
+            ui.label("the ray misses the mesh");
+        }
+        Answer::Nearest(list) => {
+            for n in list.iter().take(4) {
+                ui.label(format!(
+                    "triangle {} at distance {:.4}, closest point ({:.3}, {:.3}, {:.3})",
+                    n.prim, n.distance, n.point.x, n.point.y, n.point.z
+                ));
+            }
+        }
+        Answer::Hits(hits) => {
+            ui.label(format!("{} hits along the ray", hits.len()));
+        }
+        Answer::Indices(list) => {
+            ui.label(format!("{} triangles within the radius", list.len()));
+        }
+        Answer::Nodes(n) => {
+            ui.label(format!("the build makes {} nodes", thousands(*n)));
+        }
+    }
+    let agree = rec.agrees();
+    ui.colored_label(
+        if agree {
+            colors::VISITED
+        } else {
+            colors::CULLED
+        },
+        if agree {
+            "same answer as brute force"
+        } else {
+            "DIFFERS from brute force"
+        },
+    );
+    if rec.question.task != Task::Build {
+        ui.label(format!(
+            "{} nodes, {} BV tests, {} triangle tests (brute force: {} triangle tests)",
+            rec.cost.nodes_visited,
+            rec.cost.bound_tests,
+            rec.cost.prim_tests,
+            rec.brute_cost.prim_tests
+        ));
+    }
+}

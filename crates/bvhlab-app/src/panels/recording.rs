@@ -1,0 +1,265 @@
+//! One lane's recording at the playback step, in the "Step through" panel: the step in
+//! words, the pseudocode with the current line, the counters (this step, so far, in all,
+//! brute force's), the nodes waiting, the best answer so far, and a build's split.
+
+use bvhlab::Vector;
+use egui::{Color32, RichText};
+
+use super::step_through::variant_label;
+use crate::model::playback::{Counters, Frontier, Snapshot, describe};
+use crate::model::recording::Recording;
+use crate::model::structures::StructureKind;
+use crate::paint::colors;
+use crate::pseudocode::Task;
+
+/// One structure's recording at the playback step: the sentence, the listing with its line,
+/// the counters, the waiting nodes, the best so far, and a build's split.
+pub fn recording_state<V: Vector>(
+    recording: Option<&Result<Recording<V>, String>>,
+    snapshot: Option<&Snapshot<V>>,
+    kind: StructureKind,
+    index: usize,
+    ui: &mut egui::Ui,
+) {
+    let rec = match recording {
+        Some(Ok(rec)) => rec,
+        Some(Err(why)) => {
+            ui.colored_label(colors::PRUNED, why);
+            return;
+        }
+        None => return,
+    };
+    let Some(snap) = snapshot else { return };
+    let q = rec.question;
+    let line = snap
+        .step
+        .checked_sub(1)
+        .and_then(|i| crate::pseudocode::line_of(kind, q.task, q.variant, &rec.events, i));
+    ui.label(match &snap.event {
+        Some(e) => format!("step {}: {}", snap.step, describe(e)),
+        None => format!("step 0 of {}: nothing done yet", rec.events.len()),
+    });
+    if let Some(code) = crate::pseudocode::pseudocode(kind, q.task, q.variant) {
+        pseudocode_view(code, line, index, ui);
+    }
+    // A build tests nothing: its counters would all be zero.
+    if q.task != Task::Build {
+        counters_table(rec, snap, index, ui);
+    }
+    if rec.variant_costs.len() > 1 {
+        for (v, c) in &rec.variant_costs {
+            ui.label(format!(
+                "{}: {} nodes, {} BV tests, {} primitive tests",
+                variant_label(*v),
+                c.nodes_visited,
+                c.bound_tests,
+                c.prim_tests
+            ));
+        }
+    }
+    frontier_view(snap, ui);
+    best_view(rec.question.task, snap, ui);
+    if q.task == Task::Build {
+        super::split::split_view(rec, kind, snap, ui);
+    }
+}
+
+fn pseudocode_view(
+    code: &crate::pseudocode::Pseudocode,
+    line: Option<usize>,
+    index: usize,
+    ui: &mut egui::Ui,
+) {
+    ui.label(RichText::new(code.title).strong());
+    egui::Frame::new()
+        .fill(Color32::from_rgb(20, 22, 28))
+        .inner_margin(6.0)
+        .show(ui, |ui| {
+            egui::ScrollArea::horizontal()
+                .id_salt(("code", index))
+                .show(ui, |ui| code_lines(code, line, ui));
+        });
+    if !code.note.is_empty() {
+        ui.label(RichText::new(code.note).small().weak());
+    }
+}
+
+/// A counter's name, how to read it from [`Counters`], its total and brute force's.
+type CounterRow = (&'static str, fn(&Counters) -> u64, u64, u64);
+
+/// The listing, one unwrapped line per label, the current one marked and scrolled to.
+fn code_lines(code: &crate::pseudocode::Pseudocode, line: Option<usize>, ui: &mut egui::Ui) {
+    ui.spacing_mut().item_spacing.y = 0.0;
+    for (i, text) in code.lines.iter().enumerate() {
+        let current = line == Some(i);
+        // The arrow marks the line for screen readers and tests as well as the eye.
+        let arrow = if current { '>' } else { ' ' };
+        let mut rich = RichText::new(format!("{:>2}{arrow} {text}", i + 1)).monospace();
+        if current {
+            rich = rich
+                .background_color(Color32::from_rgb(70, 60, 20))
+                .color(Color32::WHITE);
+        }
+        let response =
+            ui.add(egui::Label::new(rich.size(12.0)).wrap_mode(egui::TextWrapMode::Extend));
+        if current {
+            response.scroll_to_me(None);
+        }
+    }
+}
+
+fn counters_table<V: Vector>(
+    rec: &Recording<V>,
+    snap: &Snapshot<V>,
+    index: usize,
+    ui: &mut egui::Ui,
+) {
+    let total = rec.cost;
+    let brute = rec.brute_cost;
+    let build = rec.question.task == Task::Build;
+    egui::Grid::new(("step counters", index))
+        .striped(true)
+        .show(ui, |ui| {
+            ui.label("");
+            ui.label("this step");
+            ui.label("so far");
+            if !build {
+                ui.label("total");
+                ui.label("brute force");
+            }
+            ui.end_row();
+            let rows: [CounterRow; 3] = [
+                (
+                    "nodes visited",
+                    |c| c.nodes,
+                    total.nodes_visited,
+                    brute.nodes_visited,
+                ),
+                (
+                    "BV tests",
+                    |c| c.bound_tests,
+                    total.bound_tests,
+                    brute.bound_tests,
+                ),
+                (
+                    "primitive tests",
+                    |c| c.prim_tests,
+                    total.prim_tests,
+                    brute.prim_tests,
+                ),
+            ];
+            // A range query reports only the volumes it refuses, not every test.
+            let unreported = rec.question.task == Task::Range;
+            for (name, get, t, b) in rows {
+                ui.label(name);
+                if unreported && name == "BV tests" {
+                    ui.label("-");
+                    ui.label("-");
+                } else {
+                    ui.label(get(&snap.this_step).to_string());
+                    ui.label(get(&snap.so_far).to_string());
+                }
+                if !build {
+                    ui.label(t.to_string());
+                    ui.label(b.to_string());
+                }
+                ui.end_row();
+            }
+        });
+    if !build {
+        let (text, color) = if rec.agrees() {
+            ("answer agrees with brute force", colors::VISITED)
+        } else {
+            ("answer DIFFERS from brute force", colors::CULLED)
+        };
+        ui.colored_label(color, text);
+    }
+}
+
+fn frontier_view<V: Vector>(snap: &Snapshot<V>, ui: &mut egui::Ui) {
+    const SHOWN: usize = 12;
+    if !snap.cells.is_empty() {
+        let cells: Vec<String> = snap
+            .cells
+            .iter()
+            .rev()
+            .take(SHOWN)
+            .map(|c| format!("({}, {})", c.coords[0], c.coords[1]))
+            .collect();
+        ui.label(format!(
+            "cells along the ray ({}), latest first: {}",
+            snap.cells.len(),
+            cells.join(", ")
+        ));
+    }
+    let Some(kind) = snap.frontier_kind else {
+        return;
+    };
+    if kind == Frontier::Calls {
+        let path: Vec<String> = snap.calls.iter().map(|n| n.0.to_string()).collect();
+        ui.colored_label(
+            colors::WAITING,
+            format!("calls under way (root first): {}", path.join(" > ")),
+        );
+        return;
+    }
+    let name = match kind {
+        Frontier::Stack => "stack (next first)",
+        Frontier::Queue => "priority queue (nearest first)",
+        Frontier::Calls => "calls still to make (next first)",
+    };
+    let items: Vec<String> = snap
+        .frontier
+        .iter()
+        .take(SHOWN)
+        .map(|p| {
+            if p.key == 0.0 && kind == Frontier::Calls {
+                format!("node {}", p.node.0)
+            } else {
+                format!("node {} ({:.3})", p.node.0, p.key)
+            }
+        })
+        .collect();
+    let more = snap.frontier.len().saturating_sub(SHOWN);
+    let tail = if more > 0 {
+        format!(" … and {more} more")
+    } else {
+        String::new()
+    };
+    ui.colored_label(
+        colors::WAITING,
+        format!(
+            "{name}: {}{tail}",
+            if items.is_empty() {
+                "empty".to_owned()
+            } else {
+                items.join(", ")
+            }
+        ),
+    );
+}
+
+fn best_view<V: Vector>(task: Task, snap: &Snapshot<V>, ui: &mut egui::Ui) {
+    let what = match task {
+        Task::FirstHit | Task::AnyHit => "best hit so far",
+        Task::AllHits => "hits so far",
+        Task::Nearest => "nearest so far",
+        Task::Range => "inside so far",
+        Task::Build => return,
+    };
+    if snap.best.is_empty() {
+        ui.label(format!("{what}: none"));
+        return;
+    }
+    let items: Vec<String> = snap
+        .best
+        .iter()
+        .take(8)
+        .map(|(p, v)| match task {
+            Task::Range => format!("#{p}"),
+            Task::Nearest => format!("#{p} at {v:.3}"),
+            _ => format!("#{p} at t = {v:.3}"),
+        })
+        .collect();
+    ui.colored_label(colors::ANSWER, format!("{what}: {}", items.join(", ")));
+}

@@ -1,0 +1,72 @@
+//! The 2D scene: the canvas's tool, the presets, and clearing, deleting and counting shapes.
+
+use super::Panel;
+use crate::model::Action2d;
+use crate::model::presets::Preset;
+use crate::model::tools::Tool;
+use crate::ui_state::Cx;
+
+/// The scene panel.
+pub struct Scene;
+
+impl Panel for Scene {
+    fn title(&self) -> &'static str {
+        "Scene"
+    }
+
+    fn show(&self, cx: &mut Cx<'_>, ui: &mut egui::Ui) {
+        let lab = cx.lab.two();
+        ui.label("Tool");
+        let mut tool = lab.tool;
+        ui.horizontal_wrapped(|ui| {
+            for t in Tool::ALL {
+                ui.selectable_value(&mut tool, t, t.label());
+            }
+        });
+        if tool != lab.tool {
+            // A drawing in progress belongs to the tool it was started with.
+            cx.ui.canvas.interaction = crate::lab2d::Interaction::None;
+            cx.act(Action2d::SetTool(tool));
+        }
+        let mut preset = lab.preset;
+        egui::ComboBox::from_label("Preset")
+            .selected_text(preset.label())
+            .show_ui(ui, |ui| {
+                for p in Preset::ALL {
+                    ui.selectable_value(&mut preset, p, p.label());
+                }
+            });
+        if preset != lab.preset {
+            cx.act(Action2d::LoadPreset(preset));
+        }
+        ui.horizontal(|ui| {
+            if ui.button("Reload preset").clicked() {
+                cx.act(Action2d::LoadPreset(lab.preset));
+            }
+            if ui.button("Fit view").clicked() {
+                let size = cx.ui.canvas.screen(lab).rect.size();
+                cx.act(Action2d::FrameScene(bvhlab::glam::Vec2::new(
+                    size.x, size.y,
+                )));
+            }
+            if ui.button("Clear").clicked() {
+                cx.act(Action2d::Clear);
+            }
+        });
+        let n_sel = lab.selection.len();
+        if ui
+            .add_enabled(
+                n_sel > 0,
+                egui::Button::new(format!("Delete selected ({n_sel})")),
+            )
+            .clicked()
+        {
+            cx.act(Action2d::DeleteSelection);
+        }
+        ui.label(format!(
+            "{} shapes, {} primitives (segments; a point is a segment of length 0).",
+            lab.scene.shapes().len(),
+            lab.prims().segments.len()
+        ));
+    }
+}

@@ -1,0 +1,210 @@
+//! The tree diagrams below the view, one per lane (side by side when comparing), in either
+//! half, linked to the view both ways: a node hovered here lights up its region and
+//! primitives there, and a region hovered there (in 3D: the leaf holding the triangle under
+//! the pointer) lights up its node here; playback's current node shows in both.
+
+use bvhlab::NodeOutline;
+use bvhlab::structure::bvh::NodeVolume;
+use bvhlab::{Aabb, Obb, Sphere};
+
+use crate::model::dimension::{Dimension, LabPrimitive, thousands};
+use crate::model::half::Half;
+use crate::model::lane::Lane;
+use crate::tree_diagram::{TreeDiagram, TreeHighlight};
+use crate::ui_state::{Cx, UiState};
+
+/// What lane `index`'s diagram highlights this frame.
+fn highlight<'a, P: LabPrimitive>(
+    half: &'a Half<P>,
+    lane: &'a Lane<P>,
+    ui: &UiState,
+    index: usize,
+    max_depth: u32,
+) -> TreeHighlight<'a> {
+    let snap = lane.snapshot.as_ref();
+    let live = half.playback.at_end;
+    let building = snap.is_some_and(|s| !s.existing.is_empty()) && !live;
+    TreeHighlight {
+        marks: snap.filter(|_| !building).map(|s| &s.marks),
+        current: snap.and_then(|s| s.current).filter(|_| !live),
+        linked: ui
+            .linked
+            .filter(|(lane, _)| *lane == index)
+            .map(|(_, node)| node),
+        existing: snap.filter(|_| building).map(|s| s.existing.as_slice()),
+        max_depth,
+    }
+}
+
+/// The lane's nodes, when its structure is built on the half's primitives as they are and
+/// small enough to list; otherwise why there is no diagram.
+fn outline<P: LabPrimitive>(
+    lane: &Lane<P>,
+    revision: u64,
+    prims: usize,
+) -> Result<&[NodeOutline<P::Point>], String> {
+    match lane.current(revision) {
+        None if lane.job.is_some() => Err("The structure is being built…".to_owned()),
+        None => Err(lane
+            .build_error
+            .clone()
+            .unwrap_or_else(|| "No structure yet.".to_owned())),
+        Some(s) => s.outline.as_deref().ok_or_else(|| {
+            format!(
+                "A tree over {} {} is too large to draw as a diagram (up to {}).",
+                thousands(prims),
+                P::NAME,
+                thousands(P::MAX_LISTED)
+            )
+        }),
+    }
+}
+
+/// The panel's content: one diagram per lane of the half shown.
+pub fn tree_panel(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
+    let lab = cx.lab;
+    cx.ui.tree_rect = Some(ui.max_rect());
+    let hovered = match lab.dimension() {
+        Dimension::Two => {
+            let two = lab.two();
+            let revision = two.scene.revision();
+            let prims = two.prims().segments.len();
+            let mut trees = std::mem::take(&mut cx.ui.trees.two);
+            let hovered = diagrams(
+                &two.half,
+                revision,
+                prims,
+                two.display.max_depth,
+                cx.ui,
+                &mut trees,
+                ui,
+            );
+            cx.ui.trees.two = trees;
+            hovered
+        }
+        Dimension::Three => {
+            let three = lab.three();
+            let prims = three.triangles().len();
+            let mut trees = std::mem::take(&mut cx.ui.trees.three);
+            let hovered = diagrams(
+                &three.half,
+                three.revision(),
+                prims,
+                u32::MAX,
+                cx.ui,
+                &mut trees,
+                ui,
+            );
+            cx.ui.trees.three = trees;
+            hovered
+        }
+    };
+    if hovered.is_some() {
+        cx.ui.hovered = hovered;
+    }
+}
+
+/// Shows each lane's diagram in a column; the node hovered, if any.
+#[allow(clippy::too_many_arguments)] // the half, its revision and size, and the UI's parts
+fn diagrams<P: LabPrimitive>(
+    half: &Half<P>,
+    revision: u64,
+    prims: usize,
+    max_depth: u32,
+    state: &UiState,
+    trees: &mut [TreeDiagram; 2],
+    ui: &mut egui::Ui,
+) -> Option<(usize, bvhlab::NodeId)>
+where
+    Sphere<P::Point>: NodeVolume<Point = P::Point>,
+    Aabb<P::Point>: NodeVolume<Point = P::Point>,
+    Obb<P::Point>: NodeVolume<Point = P::Point>,
+{
+    let mut hovered = None;
+    ui.columns(half.lane_count(), |columns| {
+        for (i, column) in columns.iter_mut().enumerate() {
+            let lane = half.lane_at(i);
+            match outline(lane, revision, prims) {
+                Ok(nodes) => {
+                    let shown = highlight(half, lane, state, i, max_depth);
+                    let response = trees[i].show(column, nodes, &shown);
+                    if let Some(node) = response.hovered {
+                        hovered = Some((i, node));
+                    }
+                }
+                Err(why) => {
+                    column.label(why);
+                }
+            }
+        }
+    });
+    hovered
+}
+
+/// The diagrams fitted into `rect` (side by side when comparing), for export.
+pub fn tree_picture(cx: &mut Cx<'_>, ctx: &egui::Context, rect: egui::Rect) -> Vec<egui::Shape> {
+    let lab = cx.lab;
+    match lab.dimension() {
+        Dimension::Two => {
+            let two = lab.two();
+            let mut trees = std::mem::take(&mut cx.ui.trees.two);
+            let shapes = pictures(
+                &two.half,
+                two.scene.revision(),
+                two.prims().segments.len(),
+                two.display.max_depth,
+                cx.ui,
+                &mut trees,
+                ctx,
+                rect,
+            );
+            cx.ui.trees.two = trees;
+            shapes
+        }
+        Dimension::Three => {
+            let three = lab.three();
+            let mut trees = std::mem::take(&mut cx.ui.trees.three);
+            let shapes = pictures(
+                &three.half,
+                three.revision(),
+                three.triangles().len(),
+                u32::MAX,
+                cx.ui,
+                &mut trees,
+                ctx,
+                rect,
+            );
+            cx.ui.trees.three = trees;
+            shapes
+        }
+    }
+}
+
+#[allow(clippy::too_many_arguments)] // as `diagrams`, with where to draw
+fn pictures<P: LabPrimitive>(
+    half: &Half<P>,
+    revision: u64,
+    prims: usize,
+    max_depth: u32,
+    state: &UiState,
+    trees: &mut [TreeDiagram; 2],
+    ctx: &egui::Context,
+    rect: egui::Rect,
+) -> Vec<egui::Shape> {
+    let count = half.lane_count();
+    let width = rect.width() / count as f32;
+    let mut shapes = Vec::new();
+    for (i, tree) in trees.iter_mut().enumerate().take(count) {
+        let lane = half.lane_at(i);
+        let Ok(nodes) = outline(lane, revision, prims) else {
+            continue;
+        };
+        let part = egui::Rect::from_min_size(
+            rect.min + egui::vec2(width * i as f32, 0.0),
+            egui::vec2(width, rect.height()),
+        );
+        let shown = highlight(half, lane, state, i, max_depth);
+        shapes.extend(tree.export_shapes(nodes, &shown, part, ctx));
+    }
+    shapes
+}

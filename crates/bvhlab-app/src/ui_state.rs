@@ -1,0 +1,98 @@
+//! What the lab's UI remembers between frames that is not the lab's state: which panels are
+//! shown, what the pointer hovers, a drag in progress, the tree diagrams' pan and zoom, the
+//! canvas's cached drawing, the 3D view's heat map and GPU resources, the frame clock. None
+//! of it is saved; the lab ([`crate::model::Lab`]) changes only through actions.
+
+use bvhlab::NodeId;
+
+use crate::frame_clock::FrameClock;
+use crate::model::{Action, Lab};
+use crate::tree_diagram::TreeDiagram;
+
+/// Which panels are shown beside the view.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[allow(clippy::struct_excessive_bools)] // one switch per panel
+pub struct PanelsShown {
+    /// The controls (left).
+    pub controls: bool,
+    /// "Step through" (right).
+    pub stepper: bool,
+    /// The tree diagram (below the view).
+    pub tree: bool,
+}
+
+impl Default for PanelsShown {
+    fn default() -> Self {
+        Self {
+            controls: true,
+            stepper: true,
+            tree: true,
+        }
+    }
+}
+
+/// The UI's own state.
+#[derive(Default)]
+pub struct UiState {
+    /// Which panels are shown.
+    pub panels: PanelsShown,
+    /// Hovering the canvas finds the node under the pointer (and the tree diagram shows it).
+    pub link_hover: bool,
+    /// The node hovered on the canvas or in a tree diagram this frame: (lane, node).
+    pub hovered: Option<(usize, NodeId)>,
+    /// Last frame's hovered node, which the tree diagrams (drawn before the view) show.
+    pub linked: Option<(usize, NodeId)>,
+    /// The 2D canvas: a drag in progress, its area, its cached drawing.
+    pub canvas: crate::lab2d::CanvasState,
+    /// The 3D view: a gizmo drag, its area, the heat map, the mesh on the GPU.
+    pub view3d: crate::lab3d::ViewState,
+    /// The tree diagrams, one per lane, for each half.
+    pub trees: Trees,
+    /// The tree diagrams' area, when they are shown.
+    pub tree_rect: Option<egui::Rect>,
+    /// A PNG export waiting for its screenshot.
+    pub pending_png: Option<crate::panels::export::PendingPng>,
+    /// Frame timing.
+    pub clock: FrameClock,
+    /// The renderer's name ("WebGPU", "WebGL2", "Vulkan", ...), once known.
+    pub renderer: Option<String>,
+    /// The GPU the lab draws with (none in headless tests): the 3D view draws through it.
+    pub render_state: Option<eframe::egui_wgpu::RenderState>,
+}
+
+/// The tree diagrams of each half, one per lane (two when comparing).
+#[derive(Default)]
+pub struct Trees {
+    /// The 2D half's.
+    pub two: [TreeDiagram; 2],
+    /// The 3D half's.
+    pub three: [TreeDiagram; 2],
+}
+
+impl UiState {
+    /// The UI as a lab starts: every panel shown, hovering linked to the tree.
+    pub fn new() -> Self {
+        Self {
+            link_hover: true,
+            ..Self::default()
+        }
+    }
+}
+
+/// What a panel or view works with this frame: the lab to read, the UI's own state, and the
+/// actions it asks for (applied after the frame is drawn).
+pub struct Cx<'a> {
+    /// The lab, to read.
+    pub lab: &'a Lab,
+    /// The UI's own state.
+    pub ui: &'a mut UiState,
+    /// What the panels and views asked for this frame.
+    pub actions: &'a mut Vec<Action>,
+}
+
+impl Cx<'_> {
+    /// Asks for `action`.
+    pub fn act(&mut self, action: impl Into<Action>) {
+        self.actions.push(action.into());
+    }
+}
