@@ -8,9 +8,10 @@ use std::hint::black_box;
 
 use bvhlab::glam::Vec2;
 use bvhlab_app::LabApp;
-use bvhlab_app::app::RayHandles;
-use bvhlab_app::presets::Preset;
-use bvhlab_app::structures::StructureKind;
+use bvhlab_app::model::lab2d::RayHandles;
+use bvhlab_app::model::presets::Preset;
+use bvhlab_app::model::structures::StructureKind;
+use bvhlab_app::model::{Action2d, HalfAction};
 use criterion::{Criterion, criterion_group, criterion_main};
 use egui::{RawInput, Rect, pos2, vec2};
 
@@ -44,32 +45,42 @@ fn dragging_a_ray(c: &mut Criterion) {
         StructureKind::BruteForce,
     ] {
         let ctx = egui::Context::default();
-        let mut app = LabApp::with_preset(Preset::TenThousand);
-        app.lane.settings.kind = kind;
+        let mut app = LabApp::with([Action2d::LoadPreset(Preset::TenThousand).into()]);
+        let mut settings = app.lab().two().half.lane.settings;
+        settings.kind = kind;
+        app.apply(HalfAction::SetStructure(settings))
+            .expect("every structure builds on 10,000 segments");
         // Two frames for layout, fitting the view and the first build.
         frame(&ctx, &mut app);
         frame(&ctx, &mut app);
-        let rect = app.view.rect;
-        let origin = app.view.to_world(pos2(rect.left() + 20.0, rect.center().y));
-        let target = app.view.to_world(rect.right_center());
+        let rect = app.canvas_screen().rect;
+        let origin = app
+            .canvas_screen()
+            .to_world(pos2(rect.left() + 20.0, rect.center().y));
+        let target = app.canvas_screen().to_world(rect.right_center());
         let mut step = 0u32;
         group.bench_function(kind.label(), |b| {
             b.iter(|| {
                 // The drag: the ray's far handle moves a little every frame.
                 step = (step + 1) % 200;
                 let wobble = (step as f32 * 0.05).sin() * 30.0;
-                app.ray = Some(RayHandles {
+                let ray = RayHandles {
                     origin,
                     target: target + Vec2::new(0.0, wobble),
-                });
+                };
+                app.apply(Action2d::SetRay(Some(ray)))
+                    .expect("a ray across the canvas");
                 black_box(frame(&ctx, &mut app))
             });
         });
         assert!(
-            app.lane
+            app.lab()
+                .two()
+                .half
+                .lane
                 .ray_outcome
                 .as_ref()
-                .is_some_and(bvhlab_app::query::RayOutcome::agrees)
+                .is_some_and(bvhlab_app::model::outcome::RayOutcome::agrees)
         );
     }
     group.finish();

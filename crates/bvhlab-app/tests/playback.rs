@@ -4,12 +4,45 @@
 
 use bvhlab::glam::Vec2;
 use bvhlab::{Event, Ray2};
-use bvhlab_app::lane::Built2d;
-use bvhlab_app::playback::{Frontier, Snapshot};
-use bvhlab_app::presets::{random_points, random_segments};
+use bvhlab::{NodeOutline, Segment2};
+use bvhlab_app::model::build_job::{BuildJob, Structure};
+use bvhlab_app::model::playback::{Frontier, Snapshot};
+use bvhlab_app::model::presets::{random_points, random_segments};
+use bvhlab_app::model::recording::{Answer, Question, Recording};
+use bvhlab_app::model::scene::Scene;
+use bvhlab_app::model::structures::{BuildSettings, StructureKind};
 use bvhlab_app::pseudocode::{Task, Variant};
-use bvhlab_app::recording::{Answer, Question, Recording};
-use bvhlab_app::structures::{BuildSettings, StructureKind};
+
+/// A structure built on a scene as the lab builds it, with the scene's segments.
+struct Built2d {
+    segments: Vec<Segment2>,
+    structure: Structure<Segment2>,
+}
+
+impl Built2d {
+    fn new(scene: &Scene, settings: BuildSettings) -> Self {
+        let segments = scene.primitives().segments;
+        let structure = BuildJob::start(&segments, scene.revision(), settings)
+            .expect("every structure is offered in 2D")
+            .run(&segments, f64::INFINITY)
+            .expect("a 2D scene builds at once");
+        Self {
+            segments,
+            structure,
+        }
+    }
+
+    fn record(&self, question: Question) -> Result<Recording, String> {
+        Recording::record_on(self.structure.subject(&self.segments), question)
+    }
+
+    fn outline(&self) -> &[NodeOutline<Vec2>] {
+        self.structure
+            .outline
+            .as_deref()
+            .expect("2D structures are listed")
+    }
+}
 
 fn question(task: Task, ray: Ray2, point: Vec2) -> Question {
     Question {
@@ -36,7 +69,7 @@ fn rays() -> Vec<(Ray2, Vec2)> {
     out
 }
 
-fn scenes() -> Vec<bvhlab_app::scene::Scene> {
+fn scenes() -> Vec<bvhlab_app::model::scene::Scene> {
     vec![
         random_segments(300, 50.0, 3.0, 11),
         random_segments(60, 50.0, 8.0, 12),
@@ -61,10 +94,11 @@ fn the_last_step_counts_what_the_core_counted_and_holds_its_answer() {
                     Task::Nearest,
                     Task::Range,
                 ] {
-                    let rec = Recording::record(&built, question(task, ray, point))
+                    let rec = built
+                        .record(question(task, ray, point))
                         .unwrap_or_else(|e| panic!("{kind:?} {task:?}: {e}"));
                     assert!(rec.agrees(), "{kind:?} {task:?} answers like brute force");
-                    let end = Snapshot::at(&rec, kind, rec.events.len(), built.outline.len());
+                    let end = Snapshot::at(&rec, kind, rec.events.len(), built.outline().len());
                     let what = format!("{kind:?} {task:?} {ray:?}");
                     assert_eq!(end.so_far.nodes, rec.cost.nodes_visited, "nodes: {what}");
                     // Range queries report no event per volume test (only the refusals), so
@@ -113,7 +147,7 @@ fn the_last_step_counts_what_the_core_counted_and_holds_its_answer() {
                         Answer::Nodes(_) => unreachable!("not a build"),
                     }
                     // The start shows nothing done.
-                    let start = Snapshot::at(&rec, kind, 0, built.outline.len());
+                    let start = Snapshot::at(&rec, kind, 0, built.outline().len());
                     assert_eq!(start.so_far.nodes + start.so_far.prim_tests, 0);
                     assert!(start.best.is_empty() && start.event.is_none());
                 }
@@ -134,13 +168,12 @@ fn the_next_node_entered_is_the_one_the_stack_or_queue_shows_first() {
             let built = Built2d::new(&scene, settings);
             for (ray, point) in rays() {
                 for task in [Task::FirstHit, Task::AllHits, Task::Nearest] {
-                    let rec =
-                        Recording::record(&built, question(task, ray, point)).expect("recorded");
+                    let rec = built.record(question(task, ray, point)).expect("recorded");
                     for (i, event) in rec.events.iter().enumerate() {
                         let Event::EnterNode { node, .. } = *event else {
                             continue;
                         };
-                        let before = Snapshot::at(&rec, kind, i, built.outline.len());
+                        let before = Snapshot::at(&rec, kind, i, built.outline().len());
                         if before.frontier.is_empty() {
                             continue; // the root
                         }
@@ -176,21 +209,19 @@ fn builds_make_every_node_of_the_outline_with_its_parent() {
                 ..BuildSettings::default()
             };
             let built = Built2d::new(&scene, settings);
-            let rec = Recording::record(
-                &built,
-                question(
+            let rec = built
+                .record(question(
                     Task::Build,
                     Ray2::through(Vec2::ZERO, Vec2::X).expect("ray"),
                     Vec2::ZERO,
-                ),
-            )
-            .expect("recorded");
-            let end = Snapshot::at(&rec, kind, rec.events.len(), built.outline.len());
+                ))
+                .expect("recorded");
+            let end = Snapshot::at(&rec, kind, rec.events.len(), built.outline().len());
             if kind == StructureKind::BruteForce {
-                assert!(rec.events.is_empty() && built.outline.is_empty());
+                assert!(rec.events.is_empty() && built.outline().is_empty());
                 continue;
             }
-            for (node, made) in built.outline.iter().zip(&end.existing) {
+            for (node, made) in built.outline().iter().zip(&end.existing) {
                 // A grid reports only the cells it puts primitives in.
                 let reported = kind != StructureKind::Grid || !node.primitives.is_empty();
                 assert!(*made || !reported, "{kind:?}: node {:?} is made", node.id);
@@ -203,15 +234,15 @@ fn builds_make_every_node_of_the_outline_with_its_parent() {
                     ..
                 } = *event
                 {
-                    let o = &built.outline[node.index()];
+                    let o = &built.outline()[node.index()];
                     assert_eq!(o.parent, parent, "{kind:?} node {node:?}'s parent");
                     assert_eq!(o.depth, depth, "{kind:?} node {node:?}'s depth");
                 }
             }
-            let half = Snapshot::at(&rec, kind, rec.events.len() / 2, built.outline.len());
+            let half = Snapshot::at(&rec, kind, rec.events.len() / 2, built.outline().len());
             let made = half.existing.iter().filter(|&&e| e).count();
             assert!(
-                made < built.outline.len() || built.outline.len() <= 1,
+                made < built.outline().len() || built.outline().len() <= 1,
                 "{kind:?}: half a build is not all of it"
             );
         }
@@ -241,9 +272,9 @@ fn the_slides_versions_answer_alike_and_cost_more() {
                 let mut q = question(task, ray, point);
                 q.variant = variant;
                 q.k = 1;
-                let rec = Recording::record(&built, q).expect("a BVH offers the slides' version");
+                let rec = built.record(q).expect("a BVH offers the slides' version");
                 assert!(rec.agrees(), "{kind:?} {task:?} {variant:?}");
-                let end = Snapshot::at(&rec, kind, rec.events.len(), built.outline.len());
+                let end = Snapshot::at(&rec, kind, rec.events.len(), built.outline().len());
                 assert_eq!(end.so_far.nodes, rec.cost.nodes_visited);
                 assert_eq!(end.so_far.prim_tests, rec.cost.prim_tests);
                 assert_eq!(end.frontier_kind, Some(Frontier::Calls));
@@ -266,7 +297,7 @@ fn the_slides_versions_answer_alike_and_cost_more() {
                     }
                     (_, Variant::Lecture) => {
                         // The slide's minDistance tests every primitive.
-                        assert_eq!(rec.cost.prim_tests as usize, built.prims.segments.len());
+                        assert_eq!(rec.cost.prim_tests as usize, built.segments.len());
                         unpruned_prims += rec.cost.prim_tests;
                     }
                     _ => pruned_prims += rec.cost.prim_tests,
@@ -287,13 +318,15 @@ fn the_slides_versions_answer_alike_and_cost_more() {
     let (ray, point) = rays()[0];
     let mut q = question(Task::FirstHit, ray, point);
     q.variant = Variant::Lecture;
-    let err = Recording::record(&built, q).expect_err("no slides' version for k-d trees");
+    let err = built
+        .record(q)
+        .expect_err("no slides' version for k-d trees");
     assert!(err.contains("only for BVHs"), "{err}");
 }
 
 #[test]
 fn the_live_answers_read_from_a_recording_are_the_ones_a_query_gives() {
-    use bvhlab_app::query::{PointOutcome, RayOutcome};
+    use bvhlab_app::model::outcome::{PointOutcome, RayOutcome};
     let scene = random_segments(300, 50.0, 3.0, 31);
     for kind in StructureKind::ALL {
         let built = Built2d::new(
@@ -304,11 +337,13 @@ fn the_live_answers_read_from_a_recording_are_the_ones_a_query_gives() {
             },
         );
         for (ray, point) in rays() {
-            let rec = Recording::record(&built, question(Task::FirstHit, ray, point)).expect("ray");
+            let rec = built
+                .record(question(Task::FirstHit, ray, point))
+                .expect("ray");
             let read = rec
                 .ray_outcome()
                 .expect("a full first hit gives the live answer");
-            let run = RayOutcome::run(&built.structure, &built.brute, ray);
+            let run = RayOutcome::run(&built.structure.built, &built.structure.brute, ray);
             assert_eq!(
                 (
                     read.hit,
@@ -326,12 +361,13 @@ fn the_live_answers_read_from_a_recording_are_the_ones_a_query_gives() {
                 ),
                 "{kind:?}"
             );
-            let rec =
-                Recording::record(&built, question(Task::Nearest, ray, point)).expect("point");
+            let rec = built
+                .record(question(Task::Nearest, ray, point))
+                .expect("point");
             let read = rec
                 .point_outcome()
                 .expect("a full k nearest gives the live answer");
-            let run = PointOutcome::run(&built.structure, &built.brute, point, 3);
+            let run = PointOutcome::run(&built.structure.built, &built.structure.brute, point, 3);
             assert_eq!(
                 (
                     &read.nearest,

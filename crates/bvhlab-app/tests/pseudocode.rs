@@ -19,9 +19,9 @@ use bvhlab::{
     Aabb, AabbTree2, BoundingVolume, Bsp2, Event, Grid2, KdTree2, NodeId, NodeShape, ObbTree2,
     Quadtree2, Ray2, Recorder, Segment2, SpatialIndex, Sphere, SphereTree2,
 };
-use bvhlab_app::presets::{Preset, random_points, random_segments};
+use bvhlab_app::model::presets::{Preset, random_points, random_segments};
+use bvhlab_app::model::structures::{BuildSettings, Built, KdSplit, StructureKind};
 use bvhlab_app::pseudocode::{Task, Variant, line_of, pseudocode};
-use bvhlab_app::structures::{BuildSettings, Built, KdSplit, StructureKind};
 
 /// A small deterministic generator (`SplitMix64`), so that the scenes and queries repeat.
 struct Rng(u64);

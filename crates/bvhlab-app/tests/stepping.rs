@@ -5,9 +5,9 @@
 
 use bvhlab::{Event, NodeId};
 use bvhlab_app::LabApp;
-use bvhlab_app::playback::describe;
+use bvhlab_app::model::playback::describe;
+use bvhlab_app::model::structures::StructureKind;
 use bvhlab_app::pseudocode::{Task, Variant};
-use bvhlab_app::structures::StructureKind;
 use egui_kittest::Harness;
 
 mod common;
@@ -50,9 +50,9 @@ fn node_named(e: &Event<bvhlab::glam::Vec2>) -> Option<NodeId> {
 /// Checks the panel against the recording at the current step.
 fn check_step(h: &Harness<'_, LabApp>, step: usize) {
     let app = h.state();
-    let rec = app.lane.recorded().expect("recorded");
+    let rec = app.lab().two().half.lane.recorded().expect("recorded");
     let events = &rec.events[..step];
-    let kind = app.lane.settings.kind;
+    let kind = app.lab().two().half.lane.settings.kind;
     let q = rec.question;
     // The sentence names the step's event.
     match events.last() {
@@ -83,7 +83,14 @@ fn check_step(h: &Harness<'_, LabApp>, step: usize) {
     }
     // The current node is the last one an event named.
     let current = events.iter().rev().find_map(node_named);
-    let snap = app.lane.snapshot.as_ref().expect("a snapshot");
+    let snap = app
+        .lab()
+        .two()
+        .half
+        .lane
+        .snapshot
+        .as_ref()
+        .expect("a snapshot");
     assert_eq!(snap.current, current, "{kind:?} step {step}");
     // The counters so far are the events counted here.
     let [nodes, bvs, prims] = count(events);
@@ -105,19 +112,19 @@ fn step_through_a_ray(kind: StructureKind) {
     let mut h = lab();
     choose(&mut h, "Structure", kind.label());
     drag_test_ray(&mut h);
-    assert_eq!(h.state().task, Task::FirstHit);
-    let len = h.state().lane.steps();
+    assert_eq!(h.state().lab().two().half.task, Task::FirstHit);
+    let len = h.state().lab().two().half.lane.steps();
     assert!(len > 3, "{kind:?}: a real traversal has steps ({len})");
     click(&mut h, "|<");
     check_step(&h, 0);
     for step in 1..=len.min(25) {
         click(&mut h, ">");
-        assert_eq!(h.state().playback.step, step);
+        assert_eq!(h.state().lab().two().half.playback.step, step);
         check_step(&h, step);
     }
     // One step back undoes the last step.
     if len > 2 {
-        let at = h.state().playback.step;
+        let at = h.state().lab().two().half.playback.step;
         click(&mut h, "<");
         check_step(&h, at - 1);
     }
@@ -125,9 +132,9 @@ fn step_through_a_ray(kind: StructureKind) {
     click(&mut h, ">|");
     check_step(&h, len);
     let app = h.state();
-    let rec = app.lane.recorded().expect("recorded");
+    let rec = app.lab().two().half.lane.recorded().expect("recorded");
     let rows = step_counters(&h);
-    let prims = app.scene.primitives().segments.len();
+    let prims = app.lab().two().scene.primitives().segments.len();
     assert_eq!(rows[0].3, rec.cost.nodes_visited.to_string());
     assert_eq!(rows[2].3, rec.cost.prim_tests.to_string());
     assert_eq!(
@@ -165,14 +172,21 @@ fn the_slides_version_and_the_full_one_are_both_counted() {
     choose(&mut h, "Structure", StructureKind::SphereTree.label());
     drag_test_ray(&mut h);
     click(&mut h, "the slides' version");
-    assert_eq!(h.state().question().variant, Variant::Lecture);
-    let len = h.state().lane.steps();
+    assert_eq!(h.state().lab().two().half.variant, Variant::Lecture);
+    let len = h.state().lab().two().half.lane.steps();
     click(&mut h, "|<");
     for step in 1..=len.min(12) {
         click(&mut h, ">");
         check_step(&h, step);
     }
-    let rec = h.state().lane.recorded().expect("recorded");
+    let rec = h
+        .state()
+        .lab()
+        .two()
+        .half
+        .lane
+        .recorded()
+        .expect("recorded");
     let (full, slides) = (rec.variant_costs[0].1, rec.variant_costs[1].1);
     assert!(slides.bound_tests > full.bound_tests);
     assert!(shows(
@@ -192,12 +206,14 @@ fn the_tree_and_the_canvas_find_each_others_nodes() {
     choose(&mut h, "Structure", StructureKind::AabbTree.label());
     let outline = h
         .state()
+        .lab()
+        .two()
+        .half
         .lane
-        .built
+        .structure
         .as_ref()
-        .expect("built")
-        .outline
-        .clone();
+        .and_then(|s| s.outline.clone())
+        .expect("built");
     // Tree -> canvas: hovering a leaf's dot in the diagram makes it the canvas's hovered node.
     let leaf = outline
         .iter()
@@ -205,11 +221,11 @@ fn the_tree_and_the_canvas_find_each_others_nodes() {
         .find(|n| n.is_leaf())
         .expect("a leaf")
         .id;
-    let at = h.state().trees[0].node_screen_pos(leaf);
+    let at = h.state().ui.trees.two[0].node_screen_pos(leaf);
     let at = at.expect("the leaf is drawn in the diagram");
     h.hover_at(at);
     settle(&mut h);
-    assert_eq!(h.state().hovered, Some((0, leaf)));
+    assert_eq!(h.state().ui.hovered, Some((0, leaf)));
     // Canvas -> tree: hovering a point on the canvas links the deepest node whose box holds
     // it (found here by scanning every node).
     let node = &outline[leaf.index()];
@@ -227,9 +243,9 @@ fn the_tree_and_the_canvas_find_each_others_nodes() {
         .map(|n| n.id);
     h.hover_at(screen(&h, target));
     settle(&mut h);
-    assert_eq!(h.state().hovered.map(|(_, n)| n), expected);
+    assert_eq!(h.state().ui.hovered.map(|(_, n)| n), expected);
     assert_eq!(
-        h.state().linked.map(|(_, n)| n),
+        h.state().ui.linked.map(|(_, n)| n),
         expected,
         "the tree shows it"
     );
@@ -240,9 +256,16 @@ fn two_structures_step_together() {
     let mut h = lab();
     choose(&mut h, "Structure", StructureKind::SphereTree.label());
     click(&mut h, "compare with");
-    assert!(h.state().compare.is_some());
+    assert!(h.state().lab().two().half.compare.is_some());
     drag_test_ray(&mut h);
-    let kinds: Vec<StructureKind> = h.state().lanes().map(|l| l.settings.kind).collect();
+    let kinds: Vec<StructureKind> = h
+        .state()
+        .lab()
+        .two()
+        .half
+        .lanes()
+        .map(|l| l.settings.kind)
+        .collect();
     assert_eq!(
         kinds,
         vec![StructureKind::SphereTree, StructureKind::AabbTree]
@@ -250,15 +273,18 @@ fn two_structures_step_together() {
     click(&mut h, "|<");
     for step in 1..=6 {
         click(&mut h, ">");
-        for lane in h.state().lanes() {
+        for lane in h.state().lab().two().half.lanes() {
             let rec = lane.recorded().expect("both lanes recorded the same ray");
             let snap = lane.snapshot.as_ref().expect("a snapshot");
             assert_eq!(snap.step, step.min(rec.events.len()));
-            assert_eq!(rec.question.ray, h.state().ray.and_then(|r| r.ray().ok()));
+            assert_eq!(
+                rec.question.ray,
+                h.state().lab().two().ray.and_then(|r| r.ray().ok())
+            );
         }
     }
     click(&mut h, ">|");
-    for lane in h.state().lanes() {
+    for lane in h.state().lab().two().half.lanes() {
         let rec = lane.recorded().expect("recorded");
         assert!(rec.agrees(), "{:?}", lane.settings.kind);
         assert_eq!(

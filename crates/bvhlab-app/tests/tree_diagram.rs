@@ -5,11 +5,11 @@
 
 use bvhlab::glam::Vec2;
 use bvhlab::{BruteForce, NodeId, NodeOutline, Ray2, SpatialIndex};
+use bvhlab_app::model::outcome::{NodeMark, NodeMarks, RayOutcome};
+use bvhlab_app::model::presets::random_segments;
+use bvhlab_app::model::structures::{BuildSettings, Built, StructureKind};
 use bvhlab_app::paint::colors;
-use bvhlab_app::presets::random_segments;
-use bvhlab_app::query::{NodeMark, NodeMarks, RayOutcome};
-use bvhlab_app::structures::{BuildSettings, Built, StructureKind};
-use bvhlab_app::tree_view::{EMPTY_MESSAGE, TreeDiagram, TreeHighlight, TreeResponse};
+use bvhlab_app::tree_diagram::{EMPTY_MESSAGE, TreeDiagram, TreeHighlight, TreeResponse};
 use egui::accesskit::Role;
 use egui::{Event, Modifiers, PointerButton, Pos2, Rect, Shape, pos2, vec2};
 use egui_kittest::Harness;

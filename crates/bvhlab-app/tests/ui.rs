@@ -5,9 +5,10 @@
 use bvhlab::glam::Vec2;
 use bvhlab::{Aabb2, BoundingVolume, BruteForce, Hit, Nearest, Ray2, SpatialIndex};
 use bvhlab_app::LabApp;
-use bvhlab_app::scene::ShapeKind;
-use bvhlab_app::structures::StructureKind;
-use bvhlab_app::tool::{Interaction, Tool};
+use bvhlab_app::lab2d::Interaction;
+use bvhlab_app::model::scene::ShapeKind;
+use bvhlab_app::model::structures::StructureKind;
+use bvhlab_app::model::tools::Tool;
 use egui::accesskit::Role;
 use egui::{Key, Pos2, pos2, vec2};
 use egui_kittest::Harness;
@@ -18,7 +19,7 @@ use common::*;
 
 /// Brute force over the app's current scene, built here from the scene (not the app's copy).
 fn scene_brute(app: &LabApp) -> BruteForce<bvhlab::Segment2> {
-    BruteForce::build(&app.scene.primitives().segments)
+    BruteForce::build(&app.lab().two().scene.primitives().segments)
 }
 
 /// The first hit of `ray` by brute force over the app's scene.
@@ -36,7 +37,7 @@ fn brute_nearest(app: &LabApp, q: Vec2, k: usize) -> Vec<Nearest<Vec2>> {
 /// The hit line the Queries panel shows for `hit` on `ray`.
 fn hit_text(app: &LabApp, ray: &Ray2, hit: Hit) -> String {
     let p = ray.at(hit.t);
-    let shape = app.scene.primitives().owner[hit.prim];
+    let shape = app.lab().two().scene.primitives().owner[hit.prim];
     format!(
         "Hit: primitive {} (shape {shape}) at t = {:.4}, point ({:.3}, {:.3})",
         hit.prim, hit.t, p.x, p.y
@@ -71,9 +72,14 @@ fn scene_line(shapes: usize, prims: usize) -> String {
 
 /// A screen point in the canvas's margin left of the default scene, `dy` points down.
 fn empty_margin(h: &Harness<'_, LabApp>, dy: f32) -> Pos2 {
-    let rect = h.state().view.rect;
+    let rect = h.state().canvas_screen().rect;
     let p = pos2(rect.left() + 20.0, rect.top() + 40.0 + dy);
-    let (lo, _) = LabApp::default().scene.bounds().expect("a scene");
+    let (lo, _) = LabApp::default()
+        .lab()
+        .two()
+        .scene
+        .bounds()
+        .expect("a scene");
     assert!(world(h, p).x < lo.x, "the margin is left of the scene");
     assert!(world(h, p + vec2(30.0, 0.0)).x < lo.x, "and wide enough");
     p
@@ -83,9 +89,12 @@ fn empty_margin(h: &Harness<'_, LabApp>, dy: f32) -> Pos2 {
 fn start_up_and_a_dragged_ray_show_the_core_answer_and_its_cost() {
     let mut h = lab();
     // Start-up: the default scene, structure and tool, and the panels say so.
-    assert_eq!(h.state().scene.shapes().len(), 200);
-    assert_eq!(h.state().tool, Tool::Ray);
-    assert_eq!(h.state().lane.settings.kind, StructureKind::AabbTree);
+    assert_eq!(h.state().lab().two().scene.shapes().len(), 200);
+    assert_eq!(h.state().lab().two().tool, Tool::Ray);
+    assert_eq!(
+        h.state().lab().two().half.lane.settings.kind,
+        StructureKind::AabbTree
+    );
     label_containing(&h, &scene_line(200, 200));
     assert_eq!(
         h.get_by_label("Structure").accesskit_node().value(),
@@ -99,11 +108,18 @@ fn start_up_and_a_dragged_ray_show_the_core_answer_and_its_cost() {
         &h,
         "Use the Ray tool or the Query point tool on the canvas."
     ));
-    assert!(h.state().lane.ray_outcome.is_none());
+    assert!(h.state().lab().two().half.lane.ray_outcome.is_none());
 
     let ray = drag_test_ray(&mut h);
     let app = h.state();
-    let outcome = app.lane.ray_outcome.as_ref().expect("the ray was answered");
+    let outcome = app
+        .lab()
+        .two()
+        .half
+        .lane
+        .ray_outcome
+        .as_ref()
+        .expect("the ray was answered");
     assert_eq!(outcome.ray, ray);
     let hit = outcome.hit.expect("this ray crosses the scene");
     assert_eq!(Some(hit), brute_hit(app, &ray), "the structure's hit");
@@ -149,14 +165,22 @@ fn start_up_and_a_dragged_ray_show_the_core_answer_and_its_cost() {
     assert!(report.agrees);
 
     // Dragging the ray's target handle moves only the target.
-    let target = h.state().ray.expect("ray").target;
+    let target = h.state().lab().two().ray.expect("ray").target;
     let new_target = Vec2::new(20.0, 4.0);
     let (a, b) = (screen(&h, target), screen(&h, new_target));
     drag(&mut h, a, b);
-    let handles = h.state().ray.expect("ray");
+    let handles = h.state().lab().two().ray.expect("ray");
     assert_eq!(handles.origin, ray.origin(), "the origin stays");
     assert!((handles.target - new_target).length() < 1e-3, "{handles:?}");
-    let outcome = h.state().lane.ray_outcome.as_ref().expect("answered");
+    let outcome = h
+        .state()
+        .lab()
+        .two()
+        .half
+        .lane
+        .ray_outcome
+        .as_ref()
+        .expect("answered");
     let moved = handles.ray().expect("valid");
     assert_eq!(outcome.ray, moved);
     assert_eq!(outcome.hit, brute_hit(h.state(), &moved));
@@ -170,7 +194,7 @@ fn every_structure_from_the_combo_gives_brute_forces_first_hit() {
     for kind in StructureKind::ALL {
         choose(&mut h, "Structure", kind.label());
         assert_eq!(
-            h.state().lane.settings.kind,
+            h.state().lab().two().half.lane.settings.kind,
             kind,
             "the combo picked {kind:?}"
         );
@@ -180,11 +204,24 @@ fn every_structure_from_the_combo_gives_brute_forces_first_hit() {
         );
         let app = h.state();
         assert_eq!(
-            app.lane.built.as_ref().map(|b| b.settings.kind),
+            app.lab()
+                .two()
+                .half
+                .lane
+                .structure
+                .as_ref()
+                .map(|b| b.settings.kind),
             Some(kind),
             "rebuilt"
         );
-        let outcome = app.lane.ray_outcome.as_ref().expect("answered");
+        let outcome = app
+            .lab()
+            .two()
+            .half
+            .lane
+            .ray_outcome
+            .as_ref()
+            .expect("answered");
         assert_eq!(outcome.hit, Some(expected), "{kind:?}");
         assert_eq!(
             label_containing(&h, "Hit: primitive"),
@@ -203,13 +240,13 @@ fn drawing_segments_polygons_and_points() {
     let mut h = lab();
     // Segment: a drag in the empty margin adds one segment from the press to the release.
     click(&mut h, "Segment");
-    assert_eq!(h.state().tool, Tool::Segment);
+    assert_eq!(h.state().lab().two().tool, Tool::Segment);
     assert!(shows(&h, "Drag to draw a segment."));
     let (a, b) = (empty_margin(&h, 0.0), empty_margin(&h, 200.0));
     drag(&mut h, a, b);
     let app = h.state();
-    assert_eq!(app.scene.shapes().len(), 201);
-    let seg = app.scene.shapes().last().expect("added");
+    assert_eq!(app.lab().two().scene.shapes().len(), 201);
+    let seg = app.lab().two().scene.shapes().last().expect("added");
     assert_eq!(seg.kind, ShapeKind::Segment);
     assert_eq!(seg.points, vec![world(&h, a), world(&h, b)]);
     label_containing(&h, &scene_line(201, 201));
@@ -224,12 +261,16 @@ fn drawing_segments_polygons_and_points() {
     for &c in &corners {
         click_at(&mut h, c);
     }
-    assert!(matches!(&h.state().interaction, Interaction::Chain(p) if p.len() == 3));
-    assert_eq!(h.state().scene.shapes().len(), 201, "not closed yet");
+    assert!(matches!(&h.state().ui.canvas.interaction, Interaction::Chain(p) if p.len() == 3));
+    assert_eq!(
+        h.state().lab().two().scene.shapes().len(),
+        201,
+        "not closed yet"
+    );
     press(&mut h, Key::Enter);
     let app = h.state();
-    assert_eq!(app.interaction, Interaction::None);
-    let polygon = app.scene.shapes().last().expect("added");
+    assert_eq!(app.ui.canvas.interaction, Interaction::None);
+    let polygon = app.lab().two().scene.shapes().last().expect("added");
     assert_eq!(polygon.kind, ShapeKind::Polygon);
     let expected: Vec<Vec2> = corners.iter().map(|&c| world(&h, c)).collect();
     assert_eq!(polygon.points, expected);
@@ -240,11 +281,11 @@ fn drawing_segments_polygons_and_points() {
     let start = empty_margin(&h, 450.0);
     click_at(&mut h, start);
     click_at(&mut h, start + vec2(20.0, 40.0));
-    assert!(matches!(&h.state().interaction, Interaction::Chain(p) if p.len() == 2));
+    assert!(matches!(&h.state().ui.canvas.interaction, Interaction::Chain(p) if p.len() == 2));
     press(&mut h, Key::Escape);
-    assert_eq!(h.state().interaction, Interaction::None);
+    assert_eq!(h.state().ui.canvas.interaction, Interaction::None);
     press(&mut h, Key::Enter);
-    assert_eq!(h.state().scene.shapes().len(), 202);
+    assert_eq!(h.state().lab().two().scene.shapes().len(), 202);
     label_containing(&h, &scene_line(202, 204));
 
     // Points: three clicks make one cloud of three points.
@@ -258,8 +299,8 @@ fn drawing_segments_polygons_and_points() {
         click_at(&mut h, d);
     }
     let app = h.state();
-    assert_eq!(app.scene.shapes().len(), 203, "one cloud");
-    let cloud = app.scene.shapes().last().expect("added");
+    assert_eq!(app.lab().two().scene.shapes().len(), 203, "one cloud");
+    let cloud = app.lab().two().scene.shapes().last().expect("added");
     assert_eq!(cloud.kind, ShapeKind::Points);
     let expected: Vec<Vec2> = dots.iter().map(|&d| world(&h, d)).collect();
     assert_eq!(cloud.points, expected);
@@ -270,11 +311,11 @@ fn drawing_segments_polygons_and_points() {
 fn select_moves_and_deletes_a_shape() {
     let mut h = lab();
     click(&mut h, "Select / move");
-    assert_eq!(h.state().tool, Tool::Select);
+    assert_eq!(h.state().lab().two().tool, Tool::Select);
     // A shape whose midpoint picks it (no other shape is nearer there).
-    let grab = h.state().view.world_length(10.0);
+    let grab = h.state().canvas_screen().world_length(10.0);
     let (index, mid) = {
-        let scene = &h.state().scene;
+        let scene = &h.state().lab().two().scene;
         scene
             .shapes()
             .iter()
@@ -290,19 +331,19 @@ fn select_moves_and_deletes_a_shape() {
             })
             .expect("some shape stands alone")
     };
-    let before = h.state().scene.shapes()[index].clone();
+    let before = h.state().lab().two().scene.shapes()[index].clone();
 
     let at = screen(&h, mid);
     click_at(&mut h, at);
-    assert_eq!(h.state().selection, vec![index]);
+    assert_eq!(h.state().lab().two().selection, vec![index]);
     h.get_by_label("Delete selected (1)");
 
     // Drag it 90 points right and 45 up: in world units, (90, 45) / scale.
-    let scale = h.state().view.scale;
+    let scale = h.state().canvas_screen().camera.scale;
     let from = screen(&h, mid);
     let to = from + vec2(90.0, -45.0);
     drag_path(&mut h, from, &[from + vec2(30.0, 10.0), to]);
-    let after = h.state().scene.shapes()[index].clone();
+    let after = h.state().lab().two().scene.shapes()[index].clone();
     let delta = Vec2::new(90.0, 45.0) / scale;
     for (p, q) in before.points.iter().zip(&after.points) {
         assert!(
@@ -311,14 +352,18 @@ fn select_moves_and_deletes_a_shape() {
             *p + delta
         );
     }
-    assert_eq!(h.state().selection, vec![index], "still selected");
+    assert_eq!(
+        h.state().lab().two().selection,
+        vec![index],
+        "still selected"
+    );
 
     // Delete removes it, and the status line says so.
     press(&mut h, Key::Delete);
     let app = h.state();
-    assert!(app.selection.is_empty());
-    assert_eq!(app.scene.shapes().len(), 199);
-    assert!(!app.scene.shapes().contains(&after));
+    assert!(app.lab().two().selection.is_empty());
+    assert_eq!(app.lab().two().scene.shapes().len(), 199);
+    assert!(!app.lab().two().scene.shapes().contains(&after));
     label_containing(&h, "Removed 1 shape(s).");
     label_containing(&h, &scene_line(199, 199));
     h.get_by_label("Delete selected (0)");
@@ -328,11 +373,11 @@ fn select_moves_and_deletes_a_shape() {
 fn query_point_shows_brute_forces_nearest_and_k_answers() {
     let mut h = lab();
     click(&mut h, "Query point");
-    assert_eq!(h.state().tool, Tool::Point);
+    assert_eq!(h.state().lab().two().tool, Tool::Point);
     let at = screen(&h, Vec2::new(7.3, 12.1));
     click_at(&mut h, at);
     let q = world(&h, at);
-    assert_eq!(h.state().point, Some(q));
+    assert_eq!(h.state().lab().two().point, Some(q));
     let nearest = brute_nearest(h.state(), q, 1);
     let n = nearest[0];
     let line = label_containing(&h, "#1: primitive");
@@ -350,7 +395,7 @@ fn query_point_shows_brute_forces_nearest_and_k_answers() {
     h.get_by_role_and_label(Role::Slider, "k nearest")
         .set_value_accesskit(3.0);
     settle(&mut h);
-    assert_eq!(h.state().k, 3);
+    assert_eq!(h.state().lab().two().half.k, 3);
     let nearest = brute_nearest(h.state(), q, 3);
     assert_eq!(nearest.len(), 3);
     for (rank, n) in nearest.iter().enumerate() {
@@ -368,6 +413,9 @@ fn query_point_shows_brute_forces_nearest_and_k_answers() {
     assert!(!shows(&h, "#4: primitive"));
     assert_eq!(
         h.state()
+            .lab()
+            .two()
+            .half
             .lane
             .point_outcome
             .as_ref()
@@ -381,11 +429,17 @@ fn bounding_volumes_preset_fits_and_the_slab_tests_nan() {
     let mut h = lab();
     choose(&mut h, "Preset", "Bounding volumes compared (§2)");
     let app = h.state();
-    assert_eq!(app.scene.shapes().len(), 1);
-    assert_eq!(app.selection, vec![0]);
+    assert_eq!(app.lab().two().scene.shapes().len(), 1);
+    assert_eq!(app.lab().two().selection, vec![0]);
     label_containing(&h, &scene_line(1, 14));
     assert_eq!(
-        app.lane.built.as_ref().map(|b| b.prims.segments.len()),
+        app.lab()
+            .two()
+            .half
+            .lane
+            .structure
+            .as_ref()
+            .map(|b| b.stats.primitives),
         Some(14),
         "the structure is rebuilt on the preset's scene"
     );
@@ -418,18 +472,18 @@ fn bounding_volumes_preset_fits_and_the_slab_tests_nan() {
     let from = screen(&h, Vec2::new(-9.0, -4.0));
     let to = screen(&h, Vec2::new(8.0, 3.0));
     drag(&mut h, from, to);
-    assert!(h.state().ray.is_some());
+    assert!(h.state().lab().two().ray.is_some());
     click(&mut h, "Slab test of the ray against the AABB");
-    assert!(h.state().display.slab_test);
+    assert!(h.state().lab().two().display.slab_test);
     assert!(!shows(&h, "0/0 = NaN"));
     click(&mut h, "Ray parallel to x");
-    let r = h.state().ray.expect("ray");
+    let r = h.state().lab().two().ray.expect("ray");
     assert_eq!(r.origin.y, r.target.y);
     label_containing(&h, "the ray is parallel to the y slab");
     click(&mut h, "…and on the slab line y = y_min");
     let app = h.state();
-    let r = app.ray.expect("ray");
-    let aabb = Aabb2::from_points(&app.scene.vertices(&[]));
+    let r = app.lab().two().ray.expect("ray");
+    let aabb = Aabb2::from_points(&app.lab().two().scene.vertices(&[]));
     assert_eq!(r.origin.y, aabb.min.y);
     label_containing(&h, "0/0 = NaN");
     label_containing(&h, "The naive formula compares a NaN");
@@ -437,7 +491,14 @@ fn bounding_volumes_preset_fits_and_the_slab_tests_nan() {
     let ray = r.ray().expect("valid");
     assert!(aabb.ray_interval(&ray).is_some(), "the core: a hit");
     assert!(label_containing(&h, "max(t_xmin, t_ymin)").ends_with(": hit."));
-    let outcome = app.lane.ray_outcome.as_ref().expect("answered");
+    let outcome = app
+        .lab()
+        .two()
+        .half
+        .lane
+        .ray_outcome
+        .as_ref()
+        .expect("answered");
     assert_eq!(outcome.hit, brute_hit(app, &ray));
     assert!(outcome.agrees());
 }
@@ -446,8 +507,8 @@ fn bounding_volumes_preset_fits_and_the_slab_tests_nan() {
 fn two_obbs_separate_and_overlap_as_dragged() {
     let mut h = lab();
     click(&mut h, "Two OBBs (SAT)");
-    assert_eq!(h.state().tool, Tool::Obb);
-    let pair = h.state().obb_pair.expect("the demo's boxes");
+    assert_eq!(h.state().lab().two().tool, Tool::Obb);
+    let pair = h.state().lab().two().obb_pair.expect("the demo's boxes");
     for axis in ["A face 0", "A face 1", "B face 0", "B face 1"] {
         label_containing(&h, axis);
     }
@@ -457,7 +518,7 @@ fn two_obbs_separate_and_overlap_as_dragged() {
     // Box B onto box A: they overlap.
     let (a, b) = (screen(&h, pair.a.center), screen(&h, pair.b.center));
     drag(&mut h, b, a);
-    let moved = h.state().obb_pair.expect("pair");
+    let moved = h.state().lab().two().obb_pair.expect("pair");
     assert!((moved.b.center - pair.a.center).length() < 1e-3);
     assert_eq!(moved.a, pair.a, "box A stays");
     label_containing(&h, overlap);
@@ -466,7 +527,7 @@ fn two_obbs_separate_and_overlap_as_dragged() {
     drag(&mut h, a, a + vec2(0.0, 250.0));
     label_containing(&h, separate);
     assert!(!shows(&h, overlap));
-    let far = h.state().obb_pair.expect("pair");
+    let far = h.state().lab().two().obb_pair.expect("pair");
     assert!(far.tests().iter().any(bvhlab::AxisTest::separates));
 
     // And back: they overlap again.
@@ -481,16 +542,16 @@ fn degenerate_rays_and_an_empty_scene_get_messages_not_panics() {
     // A press and release at one point is a click: no ray, nothing broken.
     let p = screen(&h, Vec2::new(5.0, 5.0));
     click_at(&mut h, p);
-    assert!(h.state().ray.is_none());
-    assert!(h.state().lane.ray_outcome.is_none());
-    assert_eq!(h.state().interaction, Interaction::None);
+    assert!(h.state().lab().two().ray.is_none());
+    assert!(h.state().lab().two().half.lane.ray_outcome.is_none());
+    assert_eq!(h.state().ui.canvas.interaction, Interaction::None);
 
     // A drag that comes back to where it started: a ray of zero length.
     drag_path(&mut h, p, &[p + vec2(80.0, 30.0), p]);
-    let handles = h.state().ray.expect("the drag placed handles");
+    let handles = h.state().lab().two().ray.expect("the drag placed handles");
     assert_eq!(handles.origin, handles.target);
     let err = handles.ray().expect_err("zero length");
-    assert!(h.state().lane.ray_outcome.is_none());
+    assert!(h.state().lab().two().half.lane.ray_outcome.is_none());
     assert!(!shows(&h, "Hit: primitive"));
     // Both the §2 ray tests and the Queries panel say why there is no answer.
     let no_ray = format!("No ray: {err}");
@@ -503,17 +564,25 @@ fn degenerate_rays_and_an_empty_scene_get_messages_not_panics() {
     assert!(shows(&h, "Drag s away from e."));
     // It can be dragged out again into a proper ray.
     drag(&mut h, p, p + vec2(200.0, 10.0));
-    assert!(h.state().lane.ray_outcome.is_some());
+    assert!(h.state().lab().two().half.lane.ray_outcome.is_some());
 
     // Clear empties the scene; a ray then misses, with the counters at zero.
     click(&mut h, "Clear");
-    assert!(h.state().scene.shapes().is_empty());
+    assert!(h.state().lab().two().scene.shapes().is_empty());
     label_containing(&h, &scene_line(0, 0));
     assert!(!shows(&h, "Hit: primitive"));
     label_containing(&h, "Miss: the ray hits nothing.");
     drag(&mut h, p + vec2(0.0, 100.0), p + vec2(300.0, 60.0));
     label_containing(&h, "Miss: the ray hits nothing.");
-    let outcome = h.state().lane.ray_outcome.as_ref().expect("answered");
+    let outcome = h
+        .state()
+        .lab()
+        .two()
+        .half
+        .lane
+        .ray_outcome
+        .as_ref()
+        .expect("answered");
     assert_eq!(outcome.hit, None);
     assert_eq!(outcome.brute_cost.prim_tests, 0);
     label_containing(&h, "Same answer as brute force.");
@@ -521,7 +590,7 @@ fn degenerate_rays_and_an_empty_scene_get_messages_not_panics() {
     // A zero-length ray on the empty scene: still a message (only the Queries panel's now).
     let q = p + vec2(0.0, 200.0);
     drag_path(&mut h, q, &[q + vec2(50.0, 50.0), q]);
-    assert!(h.state().lane.ray_outcome.is_none());
+    assert!(h.state().lab().two().half.lane.ray_outcome.is_none());
     label_containing(&h, &no_ray);
     assert!(!shows(&h, "Miss: the ray hits nothing."));
     drag(&mut h, q, q + vec2(300.0, -40.0));
@@ -533,7 +602,7 @@ fn degenerate_rays_and_an_empty_scene_get_messages_not_panics() {
     label_containing(&h, "No primitives: nothing is nearest.");
     for kind in StructureKind::ALL {
         choose(&mut h, "Structure", kind.label());
-        assert_eq!(h.state().lane.settings.kind, kind);
+        assert_eq!(h.state().lab().two().half.lane.settings.kind, kind);
         label_containing(&h, "Miss: the ray hits nothing.");
     }
 }
@@ -542,14 +611,17 @@ fn degenerate_rays_and_an_empty_scene_get_messages_not_panics() {
 fn ten_thousand_segments_from_the_preset_menu() {
     let mut h = lab();
     choose(&mut h, "Preset", "10,000 random segments");
-    assert_eq!(h.state().scene.shapes().len(), 10_000);
+    assert_eq!(h.state().lab().two().scene.shapes().len(), 10_000);
     label_containing(&h, &scene_line(10_000, 10_000));
     assert_eq!(
         h.state()
+            .lab()
+            .two()
+            .half
             .lane
-            .built
+            .structure
             .as_ref()
-            .map(|b| b.prims.segments.len()),
+            .map(|b| b.stats.primitives),
         Some(10_000),
         "the structure is rebuilt on the new scene"
     );
@@ -557,8 +629,15 @@ fn ten_thousand_segments_from_the_preset_menu() {
     let to = screen(&h, Vec2::new(98.0, 61.0));
     drag(&mut h, from, to);
     let app = h.state();
-    let ray = app.ray.expect("ray").ray().expect("valid");
-    let outcome = app.lane.ray_outcome.as_ref().expect("answered");
+    let ray = app.lab().two().ray.expect("ray").ray().expect("valid");
+    let outcome = app
+        .lab()
+        .two()
+        .half
+        .lane
+        .ray_outcome
+        .as_ref()
+        .expect("answered");
     let hit = outcome.hit.expect("a ray across 10,000 segments hits");
     assert_eq!(Some(hit), brute_hit(app, &ray));
     assert_eq!(
