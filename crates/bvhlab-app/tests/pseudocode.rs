@@ -12,7 +12,7 @@ use std::collections::HashSet;
 use bvhlab::glam::Vec2;
 use bvhlab::structure::kdtree::{AxisRule, KdTreeOptions};
 use bvhlab::structure::{
-    BspOptions, BvhOptions, GridOptions, NodeOutline, OrthtreeOptions, PrimitiveResult,
+    BspOptions, BvhOptions, GridOptions, NodeOutline, OrthtreeOptions, PrimitiveResult, PruneAt,
     PruneReason, RangeShape, SplitMethod,
 };
 use bvhlab::{
@@ -318,6 +318,7 @@ fn check_named_lines(
                 Event::Prune {
                     node,
                     reason: PruneReason::RayMissed,
+                    ..
                 },
                 Some(Event::RayBoundTest { node: tested, .. }),
             ) if kind.is_bvh() && node == tested && node.0 != 0 => {
@@ -492,6 +493,7 @@ impl Slides<'_> {
             self.events.push(Event::Prune {
                 node,
                 reason: PruneReason::RayMissed,
+                at: PruneAt::Test,
             });
             return;
         }
@@ -525,6 +527,7 @@ impl Slides<'_> {
                         distance: d,
                         best: self.best,
                     },
+                    at: PruneAt::Test,
                 });
                 return;
             }

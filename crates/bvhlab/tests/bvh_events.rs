@@ -9,7 +9,7 @@ use bvh_common::{TestPrim, assert_counts, rng};
 use bvhlab::glam::{Vec2, Vec3};
 use bvhlab::prelude::*;
 use bvhlab::structure::bvh::{Bvh, NodeVolume};
-use bvhlab::structure::{Event, NodeId, PruneReason, RangeShape, Recorder};
+use bvhlab::structure::{Event, NodeId, PruneAt, PruneReason, RangeShape, Recorder};
 use bvhlab::{Aabb, Obb, Sphere};
 use rand::RngExt;
 
@@ -26,7 +26,7 @@ fn depths<B, P: Primitive>(bvh: &Bvh<B, P>) -> Vec<u32> {
 }
 
 /// Replays a traversal's events: a simulated stack must agree with every `EnterNode` and
-/// every prune of a popped node; bound tests and `ChildQueued` must concern the children of
+/// every prune at a pop or a stop; bound tests and `ChildQueued` must concern the children of
 /// the node just entered (or the root, first), in visiting order; primitive tests must be of
 /// the leaf just entered. Returns the nodes entered.
 fn replay<B, P: Primitive>(bvh: &Bvh<B, P>, events: &[Event<P::Point>]) -> Vec<NodeId> {
@@ -69,18 +69,10 @@ fn replay<B, P: Primitive>(bvh: &Bvh<B, P>, events: &[Event<P::Point>]) -> Vec<N
                 );
                 queued.push((child, key, rank));
             }
-            Event::Prune { node, reason } => {
-                // A prune right after the node's bound test refuses a child; any other
-                // prune is of a node popped from the stack.
-                let just_tested = i > 0
-                    && matches!(
-                        events[i - 1],
-                        Event::RayBoundTest { node: n, .. } | Event::DistanceBoundTest { node: n, .. }
-                            if n == node
-                    );
-                let at_test = just_tested
-                    || matches!(reason, PruneReason::RayMissed | PruneReason::NoOverlap);
-                if at_test {
+            Event::Prune { node, reason, at } => {
+                if at == PruneAt::Test {
+                    // Refused at its own test: the root, or a child of the node just entered,
+                    // right after its bound test (a range query tests volumes silently).
                     let expected: Vec<NodeId> = match current {
                         None => vec![NodeId(0)],
                         Some(c) => bvh.children(c).map(|(a, b)| vec![a, b]).unwrap_or_default(),
@@ -89,7 +81,18 @@ fn replay<B, P: Primitive>(bvh: &Bvh<B, P>, events: &[Event<P::Point>]) -> Vec<N
                         expected.contains(&node),
                         "event {i}: prune of {node:?} under {current:?}"
                     );
+                    let just_tested = i > 0
+                        && matches!(
+                            events[i - 1],
+                            Event::RayBoundTest { node: n, .. } | Event::DistanceBoundTest { node: n, .. }
+                                if n == node
+                        );
+                    assert!(
+                        just_tested || reason == PruneReason::NoOverlap,
+                        "event {i}: {node:?} pruned at its test, but not right after it"
+                    );
                 } else {
+                    // Taken from the stack (at a pop, or when the query stops).
                     flush(&mut stack, &mut queued);
                     assert_eq!(
                         stack.pop(),

@@ -17,7 +17,7 @@ use bvhlab::glam::{Vec2, Vec3};
 use bvhlab::prelude::*;
 use bvhlab::structure::bvh::{Bvh, BvhOptions, NodeVolume, PreparedRay, SLACK, SplitMethod, TINY};
 use bvhlab::structure::{
-    BruteForce, Event, Hit, NodeId, PrimitiveResult, PruneReason, QueryCost, Recorder,
+    BruteForce, Event, Hit, NodeId, PrimitiveResult, PruneAt, PruneReason, QueryCost, Recorder,
 };
 use bvhlab::{Aabb, Mesh, Obb, Ray, Sphere};
 use rand::RngExt;
@@ -84,6 +84,7 @@ fn expect_intersect<B, P>(
         events.expect(Event::Prune {
             node,
             reason: PruneReason::RayMissed,
+            at: PruneAt::Test,
         });
         return;
     }
@@ -153,6 +154,7 @@ fn expect_min_distance<B, P>(
                     distance,
                     best: bound,
                 },
+                at: PruneAt::Test,
             });
             return;
         }

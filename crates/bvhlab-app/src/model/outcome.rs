@@ -63,7 +63,7 @@ impl NodeMarks {
                     node,
                     interval: None,
                 } => set(node, NodeMark::Culled),
-                Event::Prune { node, reason } => set(
+                Event::Prune { node, reason, .. } => set(
                     node,
                     match reason {
                         PruneReason::RayMissed | PruneReason::NoOverlap => NodeMark::Culled,

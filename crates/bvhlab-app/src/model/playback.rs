@@ -7,8 +7,10 @@
 //! counters. It is a pure function of the events, so stepping back is folding a shorter
 //! prefix, and the same step of two structures can be shown side by side.
 
+use std::collections::HashMap;
+
 use bvhlab::glam::Vec2;
-use bvhlab::structure::{PrimitiveResult, PruneReason};
+use bvhlab::structure::{PrimitiveResult, PruneAt, PruneReason};
 use bvhlab::{Event, NodeId, Vector};
 
 use super::outcome::NodeMarks;
@@ -301,10 +303,12 @@ impl<V: Vector> Snapshot<V> {
             Task::AllHits | Task::Range => usize::MAX,
             _ => 1,
         };
-        let mut group = 0u64;
-        let mut last_parent = None;
-        // (group, rank, entry) for stacks.
-        let mut waiting: Vec<(u64, u32, Pending)> = Vec::new();
+        // A stack walk queues a node's children together, right after entering it: the later
+        // a parent's children were queued, the nearer the top they are, and among them rank
+        // 0 is on top. Each event names its parent, so the children of each parent form one
+        // group, numbered in the order the parents first queued. (group, rank, entry)
+        let mut groups: HashMap<NodeId, usize> = HashMap::new();
+        let mut waiting: Vec<(usize, u32, Pending)> = Vec::new();
         for event in events {
             s.so_far.add(Counters::of(event));
             s.current = node_of(event).or(s.current);
@@ -315,10 +319,8 @@ impl<V: Vector> Snapshot<V> {
                     key,
                     rank,
                 } => {
-                    if last_parent != Some(parent) || rank == 0 {
-                        group += 1;
-                        last_parent = Some(parent);
-                    }
+                    let next = groups.len();
+                    let group = *groups.entry(parent).or_insert(next);
                     waiting.push((
                         group,
                         rank,
@@ -333,7 +335,6 @@ impl<V: Vector> Snapshot<V> {
                     s.calls.truncate(depth as usize);
                     s.calls.push(node);
                     waiting.retain(|w| w.2.node != node);
-                    last_parent = None;
                 }
                 Event::Prune { node, .. } => waiting.retain(|w| w.2.node != node),
                 Event::CellEnter {
@@ -445,7 +446,7 @@ fn frontier_kind(
 }
 
 /// The waiting nodes, next first.
-fn order(mut waiting: Vec<(u64, u32, Pending)>, kind: Option<Frontier>) -> Vec<Pending> {
+fn order(mut waiting: Vec<(usize, u32, Pending)>, kind: Option<Frontier>) -> Vec<Pending> {
     match kind {
         Some(Frontier::Queue) => {
             waiting.sort_by(|a, b| a.2.key.total_cmp(&b.2.key));
@@ -492,7 +493,11 @@ pub fn describe<V: Vector>(event: &Event<V>) -> String {
             parent.0,
             rank + 1
         ),
-        Event::Prune { node, reason } => format!("skip node {}: {}", node.0, why(reason)),
+        Event::Prune { node, reason, at } => match at {
+            PruneAt::Test => format!("skip node {}: {}", node.0, why(reason)),
+            PruneAt::Pop => format!("pop node {} and skip it: {}", node.0, why(reason)),
+            PruneAt::Stop => format!("stop, skipping node {}: {}", node.0, why(reason)),
+        },
         Event::PrimitiveTest { prim, result } => match result {
             PrimitiveResult::Hit(t) => format!("test primitive {prim}: hit at t = {t:.3}"),
             PrimitiveResult::Miss => format!("test primitive {prim}: miss"),

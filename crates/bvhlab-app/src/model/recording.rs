@@ -2,7 +2,7 @@
 //! cost, and brute force's answer and cost for the same question.
 //!
 //! A recording is made once per question (task, variant, ray or point, scene, settings) and
-//! replayed by [`crate::playback`]; dragging the ray re-records it.
+//! replayed by [`super::playback`]; dragging the ray re-records it.
 
 use bvhlab::glam::Vec2;
 use bvhlab::structure::RangeShape;

@@ -4,7 +4,7 @@
 use bvhlab::Event;
 use bvhlab::Vector;
 
-use super::listing::{Context, Listing, Step, listing};
+use super::listing::{Listing, Step, listing};
 use super::{Algorithm, Pseudocode, Task};
 
 const NOTE: &str = "No structure: every primitive is tested, so a query costs n tests \
@@ -57,7 +57,7 @@ static RANGE: Listing = listing!("Brute force: primitives in a range", NOTE, [
 ]);
 
 /// Brute force's queries emit only primitive tests and improvements of the best.
-fn classify<V: Vector>(_: Context<'_, V>, event: &Event<V>) -> Option<Step> {
+fn classify<V: Vector>(event: &Event<V>) -> Option<Step> {
     match event {
         Event::PrimitiveTest { .. } => Some(Step::TestPrim),
         Event::NewBest { .. } => Some(Step::NewBest),

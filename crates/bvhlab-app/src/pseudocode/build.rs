@@ -10,7 +10,7 @@
 use bvhlab::Event;
 use bvhlab::Vector;
 
-use super::listing::{Context, Listing, Step, listing};
+use super::listing::{Listing, Step, listing};
 use super::{Algorithm, Pseudocode};
 use crate::model::structures::StructureKind;
 
@@ -139,7 +139,7 @@ static GRID: Listing = listing!(
 );
 
 /// Every builder's events name their line directly.
-fn classify<V: Vector>(_: Context<'_, V>, event: &Event<V>) -> Option<Step> {
+fn classify<V: Vector>(event: &Event<V>) -> Option<Step> {
     Some(match event {
         Event::BuildNode { .. } => Step::BuildNode,
         Event::BuildSplit { .. } => Step::BuildSplit,

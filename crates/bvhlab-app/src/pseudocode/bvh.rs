@@ -6,10 +6,11 @@
 //! a node that cannot hold anything better than the best so far (see `bvh/traverse_ray.rs`,
 //! `traverse_nearest.rs` and `traverse_range.rs` in the core).
 
+use bvhlab::Event;
 use bvhlab::Vector;
-use bvhlab::{Event, structure::PruneReason};
+use bvhlab::structure::{PruneAt, PruneReason};
 
-use super::listing::{Classify, Context, Listing, ROOT, Step, listing};
+use super::listing::{Classify, Listing, ROOT, Step, listing};
 use super::{Algorithm, Pseudocode, Task};
 
 static FIRST_HIT: Listing = listing!(
@@ -143,24 +144,32 @@ static RANGE: Listing = listing!(
     ]
 );
 
-/// The ray queries' events (`bvh/traverse_ray.rs`): a prune right after a node's test is the
-/// test's verdict (the root's, or a child's); any other prune happens when a node is popped,
-/// or, for the any-hit query, once a hit is found.
-fn classify_ray<V: Vector>(cx: Context<'_, V>, event: &Event<V>) -> Option<Step> {
+/// The ray queries' events (`bvh/traverse_ray.rs`): a prune at its test is the root's miss
+/// or a child's refusal (missed, or entered beyond the best hit); at a pop, a node behind the
+/// best hit; at the stop, the any-hit query skipping what is left.
+fn classify_ray<V: Vector>(event: &Event<V>) -> Option<Step> {
     Some(match *event {
         Event::RayBoundTest { node, .. } if node == ROOT => Step::TestRoot,
         Event::RayBoundTest { .. } => Step::TestChild,
         Event::Prune {
-            reason: PruneReason::AlreadyHit,
-            ..
-        } => Step::Stop,
-        Event::Prune { node, .. } if node == ROOT && cx.just_tested(node) => Step::MissRoot,
-        Event::Prune {
             node,
+            at: PruneAt::Test,
+            ..
+        } if node == ROOT => Step::MissRoot,
+        Event::Prune {
             reason: PruneReason::RayMissed,
-        } if cx.just_tested(node) => Step::SkipChild,
-        Event::Prune { node, .. } if cx.just_tested(node) => Step::SkipBeyond,
-        Event::Prune { .. } => Step::SkipPopped,
+            at: PruneAt::Test,
+            ..
+        } => Step::SkipChild,
+        Event::Prune {
+            at: PruneAt::Test, ..
+        } => Step::SkipBeyond,
+        Event::Prune {
+            at: PruneAt::Pop, ..
+        } => Step::SkipPopped,
+        Event::Prune {
+            at: PruneAt::Stop, ..
+        } => Step::Stop,
         Event::EnterNode { .. } => Step::Enter,
         Event::ChildQueued { .. } => Step::Queue,
         Event::PrimitiveTest { .. } => Step::TestPrim,
@@ -169,15 +178,19 @@ fn classify_ray<V: Vector>(cx: Context<'_, V>, event: &Event<V>) -> Option<Step>
     })
 }
 
-/// The nearest query's events (`bvh/traverse_nearest.rs`): a child's prune follows its
-/// distance test; the root is never refused at its test (the bound starts at infinity), so
-/// its prune, like any other, happens when it is popped.
-fn classify_nearest<V: Vector>(cx: Context<'_, V>, event: &Event<V>) -> Option<Step> {
+/// The nearest query's events (`bvh/traverse_nearest.rs`): a child is pruned at its distance
+/// test, a node behind the bound when it is popped (the root is never refused at its test:
+/// the bound starts at infinity).
+fn classify_nearest<V: Vector>(event: &Event<V>) -> Option<Step> {
     Some(match *event {
         Event::DistanceBoundTest { node, .. } if node == ROOT => Step::TestRoot,
         Event::DistanceBoundTest { .. } => Step::TestChild,
-        Event::Prune { node, .. } if node != ROOT && cx.just_tested(node) => Step::SkipChild,
-        Event::Prune { .. } => Step::SkipPopped,
+        Event::Prune {
+            at: PruneAt::Test, ..
+        } => Step::SkipChild,
+        Event::Prune {
+            at: PruneAt::Pop, ..
+        } => Step::SkipPopped,
         Event::EnterNode { .. } => Step::Enter,
         Event::ChildQueued { .. } => Step::Queue,
         Event::PrimitiveTest { .. } => Step::TestPrim,
@@ -187,11 +200,17 @@ fn classify_nearest<V: Vector>(cx: Context<'_, V>, event: &Event<V>) -> Option<S
 }
 
 /// The range query's events (`bvh/traverse_range.rs`): volumes are tested silently, and
-/// only a miss is reported, as a prune.
-fn classify_range<V: Vector>(_: Context<'_, V>, event: &Event<V>) -> Option<Step> {
+/// only a miss is reported, as a prune at the test.
+fn classify_range<V: Vector>(event: &Event<V>) -> Option<Step> {
     Some(match *event {
-        Event::Prune { node, .. } if node == ROOT => Step::MissRoot,
-        Event::Prune { .. } => Step::SkipChild,
+        Event::Prune {
+            node,
+            at: PruneAt::Test,
+            ..
+        } if node == ROOT => Step::MissRoot,
+        Event::Prune {
+            at: PruneAt::Test, ..
+        } => Step::SkipChild,
         Event::EnterNode { .. } => Step::Enter,
         Event::ChildQueued { .. } => Step::Queue,
         Event::PrimitiveTest { .. } => Step::TestPrim,

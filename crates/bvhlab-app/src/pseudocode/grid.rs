@@ -8,8 +8,9 @@
 
 use bvhlab::Event;
 use bvhlab::Vector;
+use bvhlab::structure::PruneAt;
 
-use super::listing::{Classify, Context, Listing, Step, listing, primitive_step};
+use super::listing::{Classify, Listing, Step, listing, primitive_step};
 use super::{Algorithm, Pseudocode, Task};
 
 static FIRST_HIT: Listing = listing!(
@@ -110,11 +111,13 @@ static RANGE: Listing = listing!(
 );
 
 /// The ray walk's events: a cell entered, its primitives tested, and the prune of the first
-/// cell beyond the best hit (or `tMax`), which ends the walk.
-fn classify_ray<V: Vector>(_: Context<'_, V>, event: &Event<V>) -> Option<Step> {
+/// cell beyond the best hit (or `tMax`), at the stop: it ends the walk.
+fn classify_ray<V: Vector>(event: &Event<V>) -> Option<Step> {
     Some(match *event {
         Event::CellEnter { .. } => Step::Enter,
-        Event::Prune { .. } => Step::Stop,
+        Event::Prune {
+            at: PruneAt::Stop, ..
+        } => Step::Stop,
         Event::PrimitiveTest { result, .. } => primitive_step(result),
         Event::HitBeyondRegion { .. } => Step::HitBeyond,
         Event::NewBest { .. } => Step::NewBest,
@@ -122,12 +125,14 @@ fn classify_ray<V: Vector>(_: Context<'_, V>, event: &Event<V>) -> Option<Step> 
     })
 }
 
-/// The rings' events: a non-empty cell is measured, then skipped or entered; an empty one is
-/// only entered.
-fn classify_nearest<V: Vector>(_: Context<'_, V>, event: &Event<V>) -> Option<Step> {
+/// The rings' events: a non-empty cell is measured, then skipped at its test or entered; an
+/// empty one is only entered.
+fn classify_nearest<V: Vector>(event: &Event<V>) -> Option<Step> {
     Some(match *event {
         Event::DistanceBoundTest { .. } => Step::TestChild,
-        Event::Prune { .. } => Step::SkipChild,
+        Event::Prune {
+            at: PruneAt::Test, ..
+        } => Step::SkipChild,
         Event::EnterNode { .. } => Step::Enter,
         Event::PrimitiveTest { result, .. } => primitive_step(result),
         Event::NewBest { .. } => Step::NewBest,
@@ -135,10 +140,12 @@ fn classify_nearest<V: Vector>(_: Context<'_, V>, event: &Event<V>) -> Option<St
     })
 }
 
-/// The range query's events: a cell a ball misses is pruned, the others entered.
-fn classify_range<V: Vector>(_: Context<'_, V>, event: &Event<V>) -> Option<Step> {
+/// The range query's events: a cell a ball misses is pruned at its test, the others entered.
+fn classify_range<V: Vector>(event: &Event<V>) -> Option<Step> {
     Some(match *event {
-        Event::Prune { .. } => Step::SkipChild,
+        Event::Prune {
+            at: PruneAt::Test, ..
+        } => Step::SkipChild,
         Event::EnterNode { .. } => Step::Enter,
         Event::PrimitiveTest { result, .. } => primitive_step(result),
         _ => return None,

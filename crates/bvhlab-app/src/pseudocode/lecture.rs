@@ -4,15 +4,17 @@
 //!
 //! The core runs these recursions literally beside its real traversals, so that the lab can
 //! count what the slides leave out. Their events, per call: `EnterNode`; for `intersect` the
-//! node's `RayBoundTest` and, on a miss, `Prune`; for the pruned `minDistance`, before the
-//! call's `EnterNode`, a `DistanceBoundTest` and, when the node is skipped, `Prune`; a leaf's
+//! node's `RayBoundTest` and, on a miss, `Prune` (at `Test`); for the pruned `minDistance`,
+//! before the call's `EnterNode`, a `DistanceBoundTest` and, when the node is skipped, `Prune`
+//! (at `Test`); a leaf's
 //! `PrimitiveTest`s and `NewBest`s; an inner node's `ChildQueued` with rank 0 just before the
 //! call into the left child and rank 1 just before the call into the right child.
 
 use bvhlab::Event;
 use bvhlab::Vector;
+use bvhlab::structure::PruneAt;
 
-use super::listing::{Context, Listing, Step, listing};
+use super::listing::{Listing, Step, listing};
 use super::{Algorithm, Pseudocode, Task, Variant};
 
 static INTERSECT: Listing = listing!(
@@ -102,13 +104,15 @@ static MIN_DISTANCE_PRUNED: Listing = listing!(
     ]
 );
 
-/// The recursions' events: each bound test and prune concerns the node of the current call,
-/// and the rank of a queued child says which call follows.
-fn classify<V: Vector>(_: Context<'_, V>, event: &Event<V>) -> Option<Step> {
+/// The recursions' events: each bound test and prune (at the test) concerns the node of the
+/// current call, and the rank of a queued child says which call follows.
+fn classify<V: Vector>(event: &Event<V>) -> Option<Step> {
     Some(match *event {
         Event::EnterNode { .. } => Step::Enter,
         Event::RayBoundTest { .. } | Event::DistanceBoundTest { .. } => Step::TestChild,
-        Event::Prune { .. } => Step::SkipChild,
+        Event::Prune {
+            at: PruneAt::Test, ..
+        } => Step::SkipChild,
         Event::PrimitiveTest { .. } => Step::TestPrim,
         Event::NewBest { .. } => Step::NewBest,
         Event::ChildQueued { rank: 0, .. } => Step::CallLeft,

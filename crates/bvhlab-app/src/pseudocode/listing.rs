@@ -2,11 +2,10 @@
 //!
 //! Each line of a listing carries the [`Step`] of the algorithm it shows (or none), so the
 //! text and the event mapping are written side by side and cannot drift apart: an
-//! algorithm's classifier turns an event, read in the context of the events before it, into
-//! a step, and the highlighted line is the listing's line for that step. Renumbering or
-//! rewording lines never breaks the mapping.
+//! algorithm's classifier turns an event, on its own, into a step, and the highlighted line
+//! is the listing's line for that step. Renumbering or rewording lines never breaks the
+//! mapping.
 
-use bvhlab::Vector;
 use bvhlab::structure::PrimitiveResult;
 use bvhlab::{Event, NodeId};
 
@@ -30,7 +29,7 @@ pub(super) enum Step {
     /// A node or cell is entered: popped from the stack or queue, or (recursive versions)
     /// a call begins.
     Enter,
-    /// A node taken from the stack or queue is skipped without being entered.
+    /// A node taken from the stack or queue is skipped without being entered (`at Pop`).
     SkipPopped,
     /// A child's (or a cell's) bound is tested; in the recursive versions, the node's own.
     TestChild,
@@ -50,7 +49,7 @@ pub(super) enum Step {
     NewBest,
     /// A hit lies beyond the current region, so it is not final yet.
     HitBeyond,
-    /// The answer is final: everything still waiting is skipped.
+    /// The answer is final: everything still waiting is skipped (`at Stop`).
     Stop,
     /// The recursive call into the left child.
     CallLeft,
@@ -107,59 +106,13 @@ macro_rules! listing {
 }
 pub(super) use listing;
 
-/// An algorithm's reading of its own events: the step `event` is, given the events before
-/// it; `None` for an event the algorithm does not emit.
-pub(super) type Classify<V> = fn(Context<'_, V>, &Event<V>) -> Option<Step>;
-
-/// Reads an event stream for a classifier: the event at `step` and what came before it.
-#[derive(Clone, Copy)]
-pub(super) struct Context<'a, V: Vector> {
-    events: &'a [Event<V>],
-    step: usize,
-}
-
-impl<'a, V: Vector> Context<'a, V> {
-    /// The context of `events[step]`, or `None` when there is no such event.
-    pub fn new(events: &'a [Event<V>], step: usize) -> Option<(Self, &'a Event<V>)> {
-        let event = events.get(step)?;
-        Some((Self { events, step }, event))
-    }
-
-    /// The event just before this one.
-    pub fn previous(self) -> Option<&'a Event<V>> {
-        self.events[..self.step].last()
-    }
-
-    /// The events before this one, latest first.
-    pub fn before(self) -> impl Iterator<Item = &'a Event<V>> {
-        self.events[..self.step].iter().rev()
-    }
-
-    /// Whether the event just before this one tested `node`'s bound: a prune right after it
-    /// is that test's verdict, not a later decision about the node.
-    pub fn just_tested(self, node: NodeId) -> bool {
-        matches!(
-            self.previous(),
-            Some(
-                Event::RayBoundTest { node: n, .. } | Event::DistanceBoundTest { node: n, .. }
-            ) if *n == node
-        )
-    }
-
-    /// Whether `node`'s bound was tested since the last node was entered: the node is a
-    /// child of the node being expanded, not one taken from the stack or queue.
-    pub fn tested_since_enter(self, node: NodeId) -> bool {
-        self.before()
-            .take_while(|e| !matches!(e, Event::EnterNode { .. }))
-            .any(|e| {
-                matches!(
-                    e,
-                    Event::RayBoundTest { node: n, .. } | Event::DistanceBoundTest { node: n, .. }
-                    if *n == node
-                )
-            })
-    }
-}
+/// An algorithm's reading of its own events: the step `event` is, from the event alone;
+/// `None` for an event the algorithm does not emit.
+///
+/// Events carry what tells their lines apart (a prune says where in the walk it happened, a
+/// bound test names its node, so the root's is told from a child's), so a classifier never
+/// looks at the events around one.
+pub(super) type Classify<V> = fn(&Event<V>) -> Option<Step>;
 
 /// The step of a primitive test: the exact test, or the mailbox's refusal.
 pub(super) fn primitive_step(result: PrimitiveResult) -> Step {

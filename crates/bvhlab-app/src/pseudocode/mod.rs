@@ -8,7 +8,7 @@
 //! really runs, event for event; the [`Variant::Lecture`] listings are the slides' own
 //! pseudocode, with only the lines the slides leave implicit added and marked.
 //!
-//! Files: `listing` (a line's step, and reading an event in context), one file per family
+//! Files: `listing` (a line's step, and how a classifier reads an event), one file per family
 //! of algorithms (`brute`, `bvh`, `lecture`, `plane` for k-d and BSP trees, `quadtree`,
 //! `grid`) and `build` for the builders.
 
@@ -24,7 +24,7 @@ mod quadtree;
 use bvhlab::glam::Vec2;
 use bvhlab::{Event, Vector};
 
-use self::listing::{Classify, Context, Listing};
+use self::listing::{Classify, Listing};
 use crate::model::structures::StructureKind;
 
 /// What is being stepped through.
@@ -128,10 +128,10 @@ pub fn variants(kind: StructureKind, task: Task) -> Vec<Variant> {
         .collect()
 }
 
-/// The line (an index into [`Pseudocode::lines`]) that `events[step]` happens at, given the
-/// events before it (some events mean different lines depending on what came just before,
-/// e.g. a `RayBoundTest` of the root and of a child). `None` only for an event the algorithm
-/// does not emit (or a `step` past the end, or a variant that does not exist).
+/// The line (an index into [`Pseudocode::lines`]) that `events[step]` happens at, read from
+/// that event alone (it says what it is: a prune says where in the walk it happened, a bound
+/// test names its node). `None` only for an event the algorithm does not emit (or a `step`
+/// past the end, or a variant that does not exist).
 pub fn line_of<V: Vector>(
     kind: StructureKind,
     task: Task,
@@ -140,10 +140,8 @@ pub fn line_of<V: Vector>(
     step: usize,
 ) -> Option<usize> {
     let algorithm = algorithm(kind, task, variant)?;
-    let (context, event) = Context::new(events, step)?;
-    algorithm
-        .listing
-        .line((algorithm.classify)(context, event)?)
+    let event = events.get(step)?;
+    algorithm.listing.line((algorithm.classify)(event)?)
 }
 
 #[cfg(test)]

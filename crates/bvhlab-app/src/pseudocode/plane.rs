@@ -7,10 +7,11 @@
 //! node's box is its cell; for a BSP tree, whose regions are convex polygons, it is the box of
 //! the node's primitives.
 
+use bvhlab::Event;
 use bvhlab::Vector;
-use bvhlab::{Event, structure::PruneReason};
+use bvhlab::structure::PruneAt;
 
-use super::listing::{Classify, Context, Listing, ROOT, Step, listing, primitive_step};
+use super::listing::{Classify, Listing, ROOT, Step, listing, primitive_step};
 use super::{Algorithm, Pseudocode, Task};
 
 static FIRST_HIT: Listing = listing!(
@@ -152,53 +153,27 @@ static RANGE: Listing = listing!(
     ]
 );
 
-/// Whether a `BeyondBestHit` prune ends a first-hit query (the hit lies before every region
-/// still on the stack) rather than skipping one region as it is popped.
-///
-/// The query ends right after a leaf: after its primitive tests, or right after entering it
-/// when it is empty (an inner node's entry is always followed by its plane crossing). The
-/// prunes of one ending follow each other, so a chain of them is read from its start.
-fn ends_query<V: Vector>(cx: Context<'_, V>) -> bool {
-    let start = cx.before().find(|e| {
-        !matches!(
-            e,
-            Event::Prune {
-                reason: PruneReason::BeyondBestHit { .. },
-                ..
-            }
-        )
-    });
-    matches!(
-        start,
-        Some(
-            Event::PrimitiveTest { .. }
-                | Event::NewBest { .. }
-                | Event::HitBeyondRegion { .. }
-                | Event::EnterNode { .. }
-        )
-    )
-}
-
 /// The ray queries' events: the root box's test and miss; a child the ray does not reach is
-/// reported right after its parent's children are queued; other prunes happen when a region
-/// is popped or, once the answer is final, for everything left on the stack.
-fn classify_ray<V: Vector>(first_hit: bool, cx: Context<'_, V>, event: &Event<V>) -> Option<Step> {
+/// pruned at its test, right after its parent's children are queued; a region behind the
+/// best hit (or `tMax`) when it is popped; and, once the answer is final, everything left on
+/// the stack at the stop.
+fn classify_ray<V: Vector>(event: &Event<V>) -> Option<Step> {
     Some(match *event {
         Event::RayBoundTest { .. } => Step::TestRoot,
         Event::Prune {
             node,
-            reason: PruneReason::RayMissed,
-        } if node == ROOT && cx.just_tested(node) => Step::MissRoot,
-        Event::Prune {
-            reason: PruneReason::RayMissed,
+            at: PruneAt::Test,
             ..
+        } if node == ROOT => Step::MissRoot,
+        Event::Prune {
+            at: PruneAt::Test, ..
         } => Step::SkipChild,
         Event::Prune {
-            reason: PruneReason::AlreadyHit,
-            ..
+            at: PruneAt::Pop, ..
+        } => Step::SkipPopped,
+        Event::Prune {
+            at: PruneAt::Stop, ..
         } => Step::Stop,
-        Event::Prune { .. } if first_hit && ends_query(cx) => Step::Stop,
-        Event::Prune { .. } => Step::SkipPopped,
         Event::EnterNode { .. } => Step::Enter,
         Event::PlaneCrossed { .. } => Step::Cross,
         Event::ChildQueued { .. } => Step::Queue,
@@ -209,14 +184,18 @@ fn classify_ray<V: Vector>(first_hit: bool, cx: Context<'_, V>, event: &Event<V>
     })
 }
 
-/// The nearest query's events: a child's prune follows its distance test right away; the
-/// root's test is followed by its pop.
-fn classify_nearest<V: Vector>(cx: Context<'_, V>, event: &Event<V>) -> Option<Step> {
+/// The nearest query's events: a child is pruned at its distance test, a subtree whose box
+/// is now too far when it is popped.
+fn classify_nearest<V: Vector>(event: &Event<V>) -> Option<Step> {
     Some(match *event {
         Event::DistanceBoundTest { node, .. } if node == ROOT => Step::TestRoot,
         Event::DistanceBoundTest { .. } => Step::TestChild,
-        Event::Prune { node, .. } if node != ROOT && cx.just_tested(node) => Step::SkipChild,
-        Event::Prune { .. } => Step::SkipPopped,
+        Event::Prune {
+            at: PruneAt::Test, ..
+        } => Step::SkipChild,
+        Event::Prune {
+            at: PruneAt::Pop, ..
+        } => Step::SkipPopped,
         Event::EnterNode { .. } => Step::Enter,
         Event::ChildQueued { .. } => Step::Queue,
         Event::PrimitiveTest { result, .. } => primitive_step(result),
@@ -225,11 +204,18 @@ fn classify_nearest<V: Vector>(cx: Context<'_, V>, event: &Event<V>) -> Option<S
     })
 }
 
-/// The range query's events: boxes are tested silently, and only a miss is reported.
-fn classify_range<V: Vector>(_: Context<'_, V>, event: &Event<V>) -> Option<Step> {
+/// The range query's events: boxes are tested silently, and only a miss is reported, as a
+/// prune at the test.
+fn classify_range<V: Vector>(event: &Event<V>) -> Option<Step> {
     Some(match *event {
-        Event::Prune { node, .. } if node == ROOT => Step::MissRoot,
-        Event::Prune { .. } => Step::SkipChild,
+        Event::Prune {
+            node,
+            at: PruneAt::Test,
+            ..
+        } if node == ROOT => Step::MissRoot,
+        Event::Prune {
+            at: PruneAt::Test, ..
+        } => Step::SkipChild,
         Event::EnterNode { .. } => Step::Enter,
         Event::ChildQueued { .. } => Step::Queue,
         Event::PrimitiveTest { result, .. } => primitive_step(result),
@@ -240,9 +226,9 @@ fn classify_range<V: Vector>(_: Context<'_, V>, event: &Event<V>) -> Option<Step
 /// The core's k-d / BSP query for `task`; `None` for the build (see [`super::build`]).
 pub(super) fn algorithm<V: Vector>(task: Task) -> Option<Algorithm<V>> {
     let (listing, classify): (_, Classify<V>) = match task {
-        Task::FirstHit => (&FIRST_HIT, |cx, e| classify_ray(true, cx, e)),
-        Task::AnyHit => (&ANY_HIT, |cx, e| classify_ray(false, cx, e)),
-        Task::AllHits => (&ALL_HITS, |cx, e| classify_ray(false, cx, e)),
+        Task::FirstHit => (&FIRST_HIT, classify_ray),
+        Task::AnyHit => (&ANY_HIT, classify_ray),
+        Task::AllHits => (&ALL_HITS, classify_ray),
         Task::Nearest => (&NEAREST, classify_nearest),
         Task::Range => (&RANGE, classify_range),
         Task::Build => return None,

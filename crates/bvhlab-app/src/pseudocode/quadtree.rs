@@ -6,10 +6,11 @@
 //! never queued. (Primitives with a non-finite coordinate sit in no cell; every query tests
 //! them first, as the leaf loop does.)
 
+use bvhlab::Event;
 use bvhlab::Vector;
-use bvhlab::{Event, structure::PruneReason};
+use bvhlab::structure::PruneAt;
 
-use super::listing::{Classify, Context, Listing, ROOT, Step, listing, primitive_step};
+use super::listing::{Classify, Listing, ROOT, Step, listing, primitive_step};
 use super::{Algorithm, Pseudocode, Task};
 
 static FIRST_HIT: Listing = listing!(
@@ -147,23 +148,23 @@ static RANGE: Listing = listing!(
     ]
 );
 
-/// The ray queries' events: every cell's test is followed at once by its miss; the prunes
-/// of cells beyond the best hit (or `tMax`) happen when they are popped.
-fn classify_ray<V: Vector>(cx: Context<'_, V>, event: &Event<V>) -> Option<Step> {
+/// The ray queries' events: a cell the ray misses is pruned at its test; a cell beyond the
+/// best hit (or `tMax`) when it is popped.
+fn classify_ray<V: Vector>(event: &Event<V>) -> Option<Step> {
     Some(match *event {
         Event::RayBoundTest { node, .. } if node == ROOT => Step::TestRoot,
         Event::RayBoundTest { .. } => Step::TestChild,
         Event::Prune {
             node,
-            reason: PruneReason::RayMissed,
-        } if cx.just_tested(node) => {
-            if node == ROOT {
-                Step::MissRoot
-            } else {
-                Step::SkipChild
-            }
-        }
-        Event::Prune { .. } => Step::SkipPopped,
+            at: PruneAt::Test,
+            ..
+        } if node == ROOT => Step::MissRoot,
+        Event::Prune {
+            at: PruneAt::Test, ..
+        } => Step::SkipChild,
+        Event::Prune {
+            at: PruneAt::Pop, ..
+        } => Step::SkipPopped,
         Event::EnterNode { .. } => Step::Enter,
         Event::ChildQueued { .. } => Step::Queue,
         Event::PrimitiveTest { result, .. } => primitive_step(result),
@@ -173,15 +174,18 @@ fn classify_ray<V: Vector>(cx: Context<'_, V>, event: &Event<V>) -> Option<Step>
     })
 }
 
-/// The nearest query's events: the four children are measured first, then queued or pruned
-/// nearest first, so a child's prune is one whose distance was measured since the last cell
-/// was entered; any other prune is of a popped cell, and ends the search.
-fn classify_nearest<V: Vector>(cx: Context<'_, V>, event: &Event<V>) -> Option<Step> {
+/// The nearest query's events: the children are measured, then queued or pruned at their
+/// test, nearest first; a cell pruned when it is popped ends the search.
+fn classify_nearest<V: Vector>(event: &Event<V>) -> Option<Step> {
     Some(match *event {
         Event::DistanceBoundTest { node, .. } if node == ROOT => Step::TestRoot,
         Event::DistanceBoundTest { .. } => Step::TestChild,
-        Event::Prune { node, .. } if node != ROOT && cx.tested_since_enter(node) => Step::SkipChild,
-        Event::Prune { .. } => Step::SkipPopped,
+        Event::Prune {
+            at: PruneAt::Test, ..
+        } => Step::SkipChild,
+        Event::Prune {
+            at: PruneAt::Pop, ..
+        } => Step::SkipPopped,
         Event::EnterNode { .. } => Step::Enter,
         Event::ChildQueued { .. } => Step::Queue,
         Event::PrimitiveTest { result, .. } => primitive_step(result),
@@ -191,10 +195,12 @@ fn classify_nearest<V: Vector>(cx: Context<'_, V>, event: &Event<V>) -> Option<S
 }
 
 /// The range query's events: a popped cell is tested silently and reported only when the
-/// region misses it; children are pushed without events.
-fn classify_range<V: Vector>(_: Context<'_, V>, event: &Event<V>) -> Option<Step> {
+/// region misses it (a prune at the pop); children are pushed without events.
+fn classify_range<V: Vector>(event: &Event<V>) -> Option<Step> {
     Some(match *event {
-        Event::Prune { .. } => Step::SkipPopped,
+        Event::Prune {
+            at: PruneAt::Pop, ..
+        } => Step::SkipPopped,
         Event::EnterNode { .. } => Step::Enter,
         Event::PrimitiveTest { result, .. } => primitive_step(result),
         _ => return None,

@@ -3,7 +3,7 @@
 //! produce rarely (the integration test `tests/pseudocode.rs` runs the real ones).
 
 use bvhlab::glam::Vec2;
-use bvhlab::structure::{PrimitiveResult, PruneReason};
+use bvhlab::structure::{PrimitiveResult, PruneAt, PruneReason};
 use bvhlab::{Event, NodeId};
 
 use super::listing::Step;
@@ -155,10 +155,11 @@ fn text(kind: StructureKind, task: Task, events: &[Event<Vec2>], step: usize) ->
     pseudocode(kind, task, Variant::Full).expect("exists").lines[line]
 }
 
-const fn prune(node: u32, reason: PruneReason) -> Event<Vec2> {
+const fn prune(node: u32, reason: PruneReason, at: PruneAt) -> Event<Vec2> {
     Event::Prune {
         node: NodeId(node),
         reason,
+        at,
     }
 }
 
@@ -176,8 +177,12 @@ const fn distance_test(node: u32) -> Event<Vec2> {
     }
 }
 
+// The two tests below once checked how the classifiers told these prunes apart from the
+// events before them; a prune now says where it happened, and they check that this alone
+// decides the line, whatever came before.
+
 #[test]
-fn a_plane_tree_first_hit_tells_the_end_of_the_search_from_a_popped_region() {
+fn a_plane_tree_first_hit_reads_the_end_of_the_search_from_the_prune() {
     let beyond = PruneReason::BeyondBestHit {
         t_enter: 5.0,
         best_t: 2.0,
@@ -188,10 +193,16 @@ fn a_plane_tree_first_hit_tells_the_end_of_the_search_from_a_popped_region() {
     };
     let kd = StructureKind::KdTree;
     // After a leaf's tests: the hit is final, and everything left is skipped.
-    let events = [enter(4), hit, prune(5, beyond), prune(6, beyond)];
+    let events = [
+        enter(4),
+        hit,
+        prune(5, beyond, PruneAt::Stop),
+        prune(6, beyond, PruneAt::Stop),
+    ];
     assert!(text(kd, Task::FirstHit, &events, 2).contains("return hit"));
     assert!(text(kd, Task::FirstHit, &events, 3).contains("return hit"));
-    // After an inner node's children were queued: a region popped behind the best hit.
+    // A region popped behind the best hit, after an inner node's children were queued or
+    // right after a leaf's tests alike.
     let queued = Event::ChildQueued {
         parent: NodeId(4),
         child: NodeId(5),
@@ -205,22 +216,23 @@ fn a_plane_tree_first_hit_tells_the_end_of_the_search_from_a_popped_region() {
             t: 5.0,
         },
         queued,
-        prune(5, beyond),
+        prune(5, beyond, PruneAt::Pop),
     ];
     assert!(text(kd, Task::FirstHit, &events, 3).contains("continue"));
+    let events = [enter(4), hit, prune(5, beyond, PruneAt::Pop)];
+    assert!(text(kd, Task::FirstHit, &events, 2).contains("continue"));
     // All hits never stops early.
-    let events = [enter(4), hit, prune(5, beyond)];
     assert!(text(kd, Task::AllHits, &events, 2).contains("continue"));
 }
 
 #[test]
-fn a_quadtree_nearest_tells_a_childs_prune_from_the_end_of_the_search() {
+fn a_quadtree_nearest_reads_a_childs_prune_and_the_end_of_the_search_from_the_prune() {
     let no_nearer = PruneReason::NoNearer {
         distance: 3.0,
         best: 1.0,
     };
     let q = StructureKind::Quadtree;
-    // The children are measured, then queued or pruned nearest first.
+    // The children are measured, then queued or pruned at their test, nearest first.
     let events = [
         enter(0),
         distance_test(1),
@@ -233,17 +245,38 @@ fn a_quadtree_nearest_tells_a_childs_prune_from_the_end_of_the_search() {
             key: 0.0,
             rank: 0,
         },
-        prune(4, no_nearer),
+        prune(4, no_nearer, PruneAt::Test),
     ];
     assert!(text(q, Task::Nearest, &events, 6).contains("skip c"));
     assert!(text(q, Task::Nearest, &events[..6], 5).contains("push"));
-    // A popped cell no nearer than the best (not one of the children just measured): the
-    // search ends.
-    let ended = [enter(2), distance_test(5), prune(3, no_nearer)];
+    // A popped cell no nearer than the best: the search ends.
+    let ended = [
+        enter(2),
+        distance_test(5),
+        prune(3, no_nearer, PruneAt::Pop),
+    ];
     assert!(text(q, Task::Nearest, &ended, 2).contains("return best"));
     // The root, pruned at its pop (unplaced primitives already gave a nearer best).
-    let root = [distance_test(0), prune(0, no_nearer)];
+    let root = [distance_test(0), prune(0, no_nearer, PruneAt::Pop)];
     assert!(text(q, Task::Nearest, &root, 1).contains("return best"));
+}
+
+#[test]
+fn a_prune_reads_the_same_line_whatever_comes_before_it() {
+    let missed = prune(7, PruneReason::RayMissed, PruneAt::Test);
+    let hit = Event::PrimitiveTest {
+        prim: 1,
+        result: PrimitiveResult::Hit(1.0),
+    };
+    for before in [vec![], vec![enter(3)], vec![enter(3), hit]] {
+        let mut events = before.clone();
+        events.push(missed);
+        let step = events.len() - 1;
+        let bvh = text(StructureKind::AabbTree, Task::FirstHit, &events, step);
+        assert!(bvh.contains("the ray misses c"), "{before:?}: {bvh}");
+        let quad = text(StructureKind::Quadtree, Task::FirstHit, &events, step);
+        assert!(quad.contains("misses c"), "{before:?}: {quad}");
+    }
 }
 
 #[test]

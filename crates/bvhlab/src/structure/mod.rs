@@ -24,7 +24,7 @@ pub use bvh::{Bvh, BvhOptions, SplitMethod};
 pub use grid::{Grid, GridOptions};
 pub use kdtree::{KdTree, KdTreeOptions};
 pub use mailbox::Mailbox;
-pub use observe::{Event, NodeId, Observer, PrimitiveResult, PruneReason, Recorder};
+pub use observe::{Event, NodeId, Observer, PrimitiveResult, PruneAt, PruneReason, Recorder};
 pub use octree::{Orthtree, OrthtreeOptions};
 pub use outline::{NodeOutline, NodeShape, Outline, SplitPlane};
 pub use query::{Hit, HitTracker, Nearest, NearestSet, QueryCost, RangeShape, Traced};

@@ -6,6 +6,163 @@
 //! values built from numbers the algorithm computes anyway, so an unobserved query compiles to
 //! the same code as one with no observer at all (tinybvh and madmann91/bvh use the same
 //! pattern for their traversal callbacks).
+//!
+//! # The order of events
+//!
+//! Each event says what it is without the events around it: a [`Event::Prune`] says where in
+//! the walk it happened ([`PruneAt`]), a [`Event::ChildQueued`] names its parent and its place
+//! among its siblings. The order in which a structure reports them is fixed, and written
+//! below as a small grammar per structure: `a b` is `a` then `b`, `a | b` one of them, `[a]`
+//! `a` or nothing, `{a}` zero or more `a`s, `end` that nothing follows. `n` is the node being
+//! walked, `c` a child of it, `p` a primitive. Walks with a stack take their next `n` from
+//! its top, where a node's children are pushed so that `rank` 0 is on top; a priority queue
+//! gives the nearest. Some queries end before they begin and report nothing (beyond the
+//! tests of unplaced primitives, below): on an empty tree or grid, for `k = 0` or a
+//! non-finite query point, and for a NaN `t_max` in a BVH, k-d or BSP tree (or a negative one
+//! in the last two). `tests/event_order.rs` (in the `bvhlab-tests` crate) checks every
+//! structure's events against these grammars, query by query.
+//!
+//! **Brute force** (`brute_force.rs`): every primitive `p` in input order.
+//!
+//! ```text
+//! first hit, nearest    = {PrimitiveTest(p) [NewBest(p)]}
+//! any hit               = {PrimitiveTest(p)}            end at the first hit
+//! all hits, range       = {PrimitiveTest(p)}
+//! collide               = {PairTest(a, b)}              every pair, a then b in input order
+//! ```
+//!
+//! **BVH** (sphere, AABB and OBB trees: `bvh/traverse_ray.rs`, `traverse_nearest.rs`,
+//! `traverse_range.rs`, `traverse_collide.rs`). A refused node is not queued; `test` is
+//! `RayBoundTest` for rays, `DistanceBoundTest` for the nearest query, and nothing (a silent
+//! test) for a range.
+//!
+//! ```text
+//! query    = test(root) [Prune(root, at Test)] {pop}
+//! pop      = Prune(n, at Pop) | EnterNode(n) (leaf | inner)      no Pop prune in a range
+//! inner    = test(c1) [Prune(c1, at Test)] test(c2) [Prune(c2, at Test)]
+//!            {ChildQueued(n, c)}          the children not refused, nearer first
+//! leaf     = {PrimitiveTest(p) [NewBest(p)]} [stop]   NewBest: first hit and nearest
+//! stop     = {Prune(m, at Stop)} end      any hit, at its first hit: every m left, top first
+//! collide  = {NodePairTest(a, b) {PairTest}}
+//! ```
+//!
+//! Prune reasons: `RayMissed` or `BeyondBestHit` (the best hit, or `t_max`) for rays,
+//! `AlreadyHit` at a stop, `NoNearer` for the nearest query, `NoOverlap` for a range. In
+//! `collide`, the node pairs come from a stack, the roots first; two overlapping leaves test
+//! their primitive pairs; of any other overlapping pair the larger node (or the inner one) is
+//! opened and each of its children paired with the other node, first child first.
+//!
+//! **The slides' recursions** (`bvh/lecture.rs`): `c1` and `c2` are the left and right
+//! child, and `call` is the query's own recursion.
+//!
+//! ```text
+//! intersect(n)   = EnterNode(n) RayBoundTest(n) (Prune(n, at Test) | leaf | calls)
+//! minDistance(n) = EnterNode(n) (leaf | calls)
+//! pruned(n)      = DistanceBoundTest(n) (Prune(n, at Test) | EnterNode(n) (leaf | calls))
+//! calls          = ChildQueued(n, c1, rank 0) call(c1) ChildQueued(n, c2, rank 1) call(c2)
+//! leaf           = {PrimitiveTest(p) [NewBest(p)]}
+//! ```
+//!
+//! **k-d and BSP trees** (`bsp/traverse_ray.rs`, `traverse_nearest.rs`, `traverse_range.rs`,
+//! `traverse_collide.rs`, shared through `plane_tree.rs`). A primitive listed in several
+//! leaves is reported `AlreadyTested` after its first test (mailboxing), and gets no
+//! `NewBest` then.
+//!
+//! ```text
+//! ray      = RayBoundTest(root) (Prune(root, at Test) | {pop})    the root's box
+//! pop      = Prune(n, at Pop) | EnterNode(n) (leaf | inner)
+//! inner    = PlaneCrossed(n) {ChildQueued(n, c)} {Prune(c, at Test)}
+//!                         the children the ray reaches, near first; then those it does not
+//! leaf     = first hit:   {PrimitiveTest(p) [NewBest(p)]} (stop | [HitBeyondRegion(best)])
+//!            any hit:     {PrimitiveTest(p)} [stop]      stop right after the first hit
+//!            all hits:    {PrimitiveTest(p)}
+//! stop     = {Prune(m, at Stop)} end      every m left on the stack, top first
+//!
+//! nearest  = DistanceBoundTest(root) {pop}
+//! pop      = Prune(n, at Pop) | EnterNode(n) (leaf | inner)
+//! inner    = {DistanceBoundTest(c) (Prune(c, at Test) | ChildQueued(n, c))}
+//!                         both children, the point's side first
+//! leaf     = {PrimitiveTest(p) [NewBest(p)]}
+//!
+//! range    = Prune(root, at Test) | {EnterNode(n) (leaf | inner)}
+//! inner    = {Prune(c, at Test) | ChildQueued(n, c)}        below child, then above
+//! leaf     = {PrimitiveTest(p)}
+//!
+//! collide  = {NodePairTest(a, b) {PairTest}}      as the BVH's, the larger box opened; a
+//!                                                 pair of primitives met again is skipped
+//! ```
+//!
+//! The first hit stops (`BeyondBestHit`) once its best hit lies before every region left on
+//! the stack; the any-hit query stops (`AlreadyHit`) at its first hit; `RayMissed` refuses
+//! the root's box or a child the ray does not reach; a popped region is pruned
+//! `BeyondBestHit` (the best hit, or `t_max`); the nearest query prunes `NoNearer`, the range
+//! `NoOverlap`.
+//!
+//! **Quadtrees and octrees** (`octree/traverse.rs`, `nearest.rs`, `range_collide.rs`). The
+//! primitives with a non-finite coordinate sit in no cell: each query tests them first
+//! (`unplaced`, the leaf's grammar over them; an any-hit query that hits one ends there).
+//! Primitives listed in several cells are mailboxed, as in the k-d tree.
+//!
+//! ```text
+//! ray      = unplaced RayBoundTest(root) (Prune(root, at Test) | {pop})
+//! pop      = Prune(n, at Pop) | EnterNode(n) (leaf | inner)
+//! inner    = {RayBoundTest(c) [Prune(c, at Test)]}    every child, in stored order
+//!            {ChildQueued(n, c)}    the children the ray meets that are not empty leaves,
+//!                                   by entry t
+//! leaf     = first hit:   {PrimitiveTest(p) [HitBeyondRegion(p)] [NewBest(p)]}
+//!            any hit:     {PrimitiveTest(p)}     end at the first hit
+//!            all hits:    {PrimitiveTest(p)}
+//!
+//! nearest  = unplaced DistanceBoundTest(root) {EnterNode(n) (leaf | inner)}
+//!            [Prune(n, at Pop) end]      n: the nearest cell queued; the first one no nearer
+//!                                        than the k-th best ends the search
+//! inner    = {DistanceBoundTest(c)}     every child, in stored order
+//!            {ChildQueued(n, c) | Prune(c, at Test)}    the non-empty ones, nearest first
+//! leaf     = {PrimitiveTest(p) [NewBest(p)]}
+//!
+//! range    = unplaced {Prune(n, at Pop) | EnterNode(n) [leaf]}
+//!                     an inner node's children are pushed silently, the first on top
+//! leaf     = {PrimitiveTest(p)}
+//!
+//! collide  = unplaced {NodePairTest(a, b) {PairTest}}   as the BVH's, the larger cell
+//!                     opened; pairs met again, or whose boxes are apart, are skipped
+//! ```
+//!
+//! A range that is not a finite box or ball tests every primitive, and reports nothing else.
+//!
+//! **Uniform grid** (`grid/ray_query.rs`, `nearest.rs`, `range_collide.rs`). Unplaced
+//! primitives and mailboxing as in the quadtree; cells are named by their linear index.
+//!
+//! ```text
+//! ray      = unplaced {CellEnter(c) cell} [Prune(c, at Stop)]
+//!                  the cells along the ray, front to back; the first one that begins
+//!                  after the best hit (or t_max) ends the walk
+//! cell     = first hit:   {PrimitiveTest(p) [HitBeyondRegion(p)] [NewBest(p)]}
+//!            any hit:     {PrimitiveTest(p)}     end at the first hit
+//!            all hits:    {PrimitiveTest(p)}
+//!
+//! nearest  = unplaced {cell}     the rings of cells around the point's cell, outward
+//! cell     = DistanceBoundTest(c) (Prune(c, at Test) | EnterNode(c) {PrimitiveTest(p)
+//!            [NewBest(p)]})            a cell that lists primitives
+//!          | EnterNode(c)              an empty one
+//!
+//! range    = unplaced {Prune(c, at Test) | EnterNode(c) {PrimitiveTest(p)}}
+//!                  the cells the region's box covers, in index order; a ball prunes
+//!                  those it misses
+//! collide  = unplaced {NodePairTest(a, b) {PairTest}}
+//!                  a: each non-empty cell of the first grid, in order; b: the non-empty
+//!                  cells of the second that a's box covers, in order
+//! ```
+//!
+//! **Builds** (`build_observed` of each structure): trees report their nodes depth first,
+//! first child first; a BVH, k-d or BSP node that splits has two children, a quadtree cell
+//! four (an octree cell eight), with one `BuildSplit` per axis.
+//!
+//! ```text
+//! tree     = node(root)
+//! node(n)  = BuildNode(n, parent) (BuildSplit(n) {BuildSplit(n)} {node(c)} | BuildLeaf(n))
+//! grid     = {BuildLeaf(c)}       each non-empty cell, in index order
+//! ```
 
 use crate::Vector;
 
@@ -47,6 +204,27 @@ pub enum PruneReason {
     AlreadyHit,
 }
 
+/// Where in the walk a node (or cell) was skipped: which line of the algorithm skipped it.
+///
+/// The same reason can be given at different places (a node the ray enters beyond the best
+/// hit is refused at its own test, or later when it is taken from the stack), and the lab
+/// highlights a different line for each, so the event says which it is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum PruneAt {
+    /// At the node's own test, before it was ever queued: the root's (the query is over before
+    /// it began), a child's as its parent is expanded (a child a k-d or BSP ray does not reach
+    /// is refused there too), a grid cell's, or, in the slides' recursions, at the start of the
+    /// call.
+    Test,
+    /// When the node is taken from the stack or queue: the best so far has moved since it was
+    /// queued (a quadtree's range query tests its cells only then).
+    Pop,
+    /// Once the answer is final: the node is skipped with everything else still waiting (an
+    /// any-hit query found its hit; a k-d or BSP first hit lies before every region left; the
+    /// grid's walk reached a cell that begins after the best hit).
+    Stop,
+}
+
 /// What testing one primitive gave.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum PrimitiveResult {
@@ -68,7 +246,8 @@ pub enum PrimitiveResult {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Event<V: Vector> {
     // ---- queries ----
-    /// A node is entered: popped from the traversal stack or queue.
+    /// A node is entered: popped from the traversal stack or queue (in the slides'
+    /// recursions: a call begins).
     EnterNode {
         /// The node.
         node: NodeId,
@@ -101,12 +280,15 @@ pub enum Event<V: Vector> {
         /// Its place in the visiting order among its siblings.
         rank: u32,
     },
-    /// A node was skipped, and why.
+    /// A node was skipped: why, and where in the walk.
     Prune {
         /// The node.
         node: NodeId,
         /// Why.
         reason: PruneReason,
+        /// Where: at its own test, when taken from the stack or queue, or when the query
+        /// stops.
+        at: PruneAt,
     },
     /// A primitive was tested.
     PrimitiveTest {

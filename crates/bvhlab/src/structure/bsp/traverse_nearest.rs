@@ -9,15 +9,17 @@
 //! lower index would still win, and the distances are compared with a rounding margin.
 //!
 //! Events: [`Event::DistanceBoundTest`] of the root box; for each subtree taken from the stack,
-//! `Prune { NoNearer }` when its box is now too far, else [`Event::EnterNode`]; at an inner
-//! node a `DistanceBoundTest` per child (near side first), then [`Event::ChildQueued`] (rank 0
-//! is visited first, keyed by the box distance) or `Prune { NoNearer }`; in a leaf
+//! `Prune { NoNearer, at: Pop }` when its box is now too far, else [`Event::EnterNode`]; at an
+//! inner node a `DistanceBoundTest` per child (near side first), then [`Event::ChildQueued`]
+//! (rank 0 is visited first, keyed by the box distance) or `Prune { NoNearer, at: Test }`; in a
+//! leaf
 //! [`Event::PrimitiveTest`] with the distance (`AlreadyTested` for a mailboxed primitive) and
 //! [`Event::NewBest`] with the primitive's distance when it enters the k nearest.
 
 use super::plane_tree::{PlaneNode, PlaneTree, PointOfTree, ROOT, SLACK, magnitude, node_id};
 use crate::structure::{
-    Event, Mailbox, Nearest, NearestSet, Observer, PrimitiveResult, PruneReason, QueryCost, Traced,
+    Event, Mailbox, Nearest, NearestSet, Observer, PrimitiveResult, PruneAt, PruneReason,
+    QueryCost, Traced,
 };
 use crate::volume::{Aabb, BoundingVolume};
 use crate::{Primitive, Vector};
@@ -72,6 +74,7 @@ pub(crate) fn k_nearest<T: PlaneTree, O: Observer<PointOfTree<T>>>(
                     distance: next.distance,
                     best,
                 },
+                at: PruneAt::Pop,
             });
             continue;
         }
@@ -109,6 +112,7 @@ pub(crate) fn k_nearest<T: PlaneTree, O: Observer<PointOfTree<T>>>(
                         observer.on(Event::Prune {
                             node: node_id(children[side]),
                             reason: PruneReason::NoNearer { distance, best },
+                            at: PruneAt::Test,
                         });
                         continue;
                     }

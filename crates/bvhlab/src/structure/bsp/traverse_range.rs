@@ -4,15 +4,15 @@
 //! overlaps the region; in the leaves, test each primitive exactly, once (a [`Mailbox`]
 //! skips the copies of a primitive listed in several leaves).
 //!
-//! Events: `Prune { NoOverlap }` when the region misses the root box; [`Event::EnterNode`] per
-//! visited node; per child [`Event::ChildQueued`] (key 0, below child first) or
-//! `Prune { NoOverlap }`; in a leaf [`Event::PrimitiveTest`] (`Overlap`, `NoOverlap`, or
+//! Events: `Prune { NoOverlap, at: Test }` when the region misses the root box;
+//! [`Event::EnterNode`] per visited node; per child [`Event::ChildQueued`] (key 0, below child
+//! first) or `Prune { NoOverlap, at: Test }`; in a leaf [`Event::PrimitiveTest`] (`Overlap`, `NoOverlap`, or
 //! `AlreadyTested`).
 
 use super::plane_tree::{PlaneNode, PlaneTree, PointOfTree, ROOT, SLACK, magnitude, node_id};
 use crate::Vector;
 use crate::structure::{
-    Event, Mailbox, Observer, PrimitiveResult, PruneReason, QueryCost, RangeShape, Traced,
+    Event, Mailbox, Observer, PrimitiveResult, PruneAt, PruneReason, QueryCost, RangeShape, Traced,
 };
 use crate::volume::{Aabb, BoundingVolume};
 
@@ -55,6 +55,7 @@ pub(crate) fn range<T: PlaneTree, O: Observer<PointOfTree<T>>>(
         observer.on(Event::Prune {
             node: node_id(ROOT),
             reason: PruneReason::NoOverlap,
+            at: PruneAt::Test,
         });
         return Traced {
             answer: found,
@@ -101,6 +102,7 @@ pub(crate) fn range<T: PlaneTree, O: Observer<PointOfTree<T>>>(
                         observer.on(Event::Prune {
                             node: node_id(children[side]),
                             reason: PruneReason::NoOverlap,
+                            at: PruneAt::Test,
                         });
                         continue;
                     }

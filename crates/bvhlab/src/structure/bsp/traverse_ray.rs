@@ -15,19 +15,23 @@
 //! first hit that lies inside the current node"); a hit beyond it stays the best candidate
 //! ([`Event::HitBeyondRegion`]) while the regions the ray reaches before it are searched.
 //!
-//! Events, in order: [`Event::RayBoundTest`] of the root box (then `Prune { RayMissed }` on a
-//! miss); for each region taken from the stack, `Prune { BeyondBestHit }` when the ray enters
-//! it after the best hit (or `t_max`), else [`Event::EnterNode`]; at an inner node
-//! [`Event::PlaneCrossed`], [`Event::ChildQueued`] for each child the ray reaches (near child
-//! rank 0, keyed by its `t_enter`) and `Prune { RayMissed }` for a child it does not; in a leaf
+//! Events, in order (the grammar is in
+//! [`observe`](crate::structure::observe#the-order-of-events)): [`Event::RayBoundTest`] of the
+//! root box (then `Prune { RayMissed, at: Test }` on a miss); for each region taken from the
+//! stack, `Prune { BeyondBestHit, at: Pop }` when the ray enters it after the best hit (or
+//! `t_max`), else [`Event::EnterNode`]; at an inner node [`Event::PlaneCrossed`],
+//! [`Event::ChildQueued`] for each child the ray reaches (near child rank 0, keyed by its
+//! `t_enter`) and `Prune { RayMissed, at: Test }` for a child it does not; in a leaf
 //! [`Event::PrimitiveTest`] per listed primitive (`AlreadyTested` for a mailboxed one),
 //! [`Event::NewBest`], and `HitBeyondRegion`. When the search stops, every region left on the
-//! stack is reported pruned (`BeyondBestHit`, or `AlreadyHit` for the any-hit query).
+//! stack is reported pruned at `Stop` (`BeyondBestHit`, or `AlreadyHit` for the any-hit
+//! query).
 
 use super::plane_tree::{PlaneNode, PlaneTree, PointOfTree, ROOT, node_id, root_interval};
 use crate::structure::query::by_t_then_prim;
 use crate::structure::{
-    Event, Hit, HitTracker, Mailbox, Observer, PrimitiveResult, PruneReason, QueryCost, Traced,
+    Event, Hit, HitTracker, Mailbox, Observer, PrimitiveResult, PruneAt, PruneReason, QueryCost,
+    Traced,
 };
 use crate::{Primitive, Ray};
 
@@ -83,6 +87,7 @@ impl<'t, T: PlaneTree> RayWalk<'t, T> {
             None => observer.on(Event::Prune {
                 node: node_id(ROOT),
                 reason: PruneReason::RayMissed,
+                at: PruneAt::Test,
             }),
         }
         walk
@@ -113,6 +118,7 @@ impl<'t, T: PlaneTree> RayWalk<'t, T> {
                         t_enter: span.t_enter,
                         best_t: limit,
                     },
+                    at: PruneAt::Pop,
                 });
                 continue;
             }
@@ -154,6 +160,7 @@ impl<'t, T: PlaneTree> RayWalk<'t, T> {
                     observer.on(Event::Prune {
                         node: node_id(child),
                         reason: PruneReason::RayMissed,
+                        at: PruneAt::Test,
                     });
                 }
             }
@@ -171,6 +178,7 @@ impl<'t, T: PlaneTree> RayWalk<'t, T> {
             observer.on(Event::Prune {
                 node: node_id(span.node),
                 reason: reason(&span),
+                at: PruneAt::Stop,
             });
         }
     }

@@ -20,8 +20,8 @@
 use super::Bvh;
 use super::volume::{GROW, NodeVolume, PreparedRay, query_slack};
 use crate::structure::{
-    Event, Hit, HitTracker, Nearest, NearestSet, NodeId, Observer, PrimitiveResult, PruneReason,
-    QueryCost, Traced,
+    Event, Hit, HitTracker, Nearest, NearestSet, NodeId, Observer, PrimitiveResult, PruneAt,
+    PruneReason, QueryCost, Traced,
 };
 use crate::{Primitive, Ray, Vector};
 
@@ -37,8 +37,8 @@ where
     /// cost.
     ///
     /// Events, per call, in the recursion's order: `EnterNode`, then `RayBoundTest` (the
-    /// slide's `bvNode.intersect(ray, t)`); on a miss `Prune(RayMissed)` and the call
-    /// returns. A leaf then reports a `PrimitiveTest` per primitive (hits beyond `t_max`
+    /// slide's `bvNode.intersect(ray, t)`); on a miss `Prune(RayMissed, at Test)` and the
+    /// call returns. A leaf then reports a `PrimitiveTest` per primitive (hits beyond `t_max`
     /// count as misses) and `NewBest` whenever the query's best hit improves; an inner node
     /// reports `ChildQueued` (key 0, rank 0) for its left child just before recursing into
     /// it, then `ChildQueued` (key 0, rank 1) for its right child just before that call. An
@@ -110,8 +110,8 @@ where
     ///
     /// Events: those of the unpruned query, with, at the start of each call (before its
     /// `EnterNode`), `DistanceBoundTest` with the distance from the point to the node's
-    /// volume, then `Prune(NoNearer)` with that distance and `currentMin` when the node is
-    /// skipped (and the call returns).
+    /// volume, then `Prune(NoNearer, at Test)` with that distance and `currentMin` when the
+    /// node is skipped (and the call returns).
     pub fn lecture_min_distance_pruned_observed<O: Observer<P::Point>>(
         &self,
         point: P::Point,
@@ -192,6 +192,7 @@ where
             self.observer.on(Event::Prune {
                 node: NodeId(node),
                 reason: PruneReason::RayMissed,
+                at: PruneAt::Test,
             });
             return None;
         }
@@ -305,6 +306,7 @@ where
             self.observer.on(Event::Prune {
                 node: NodeId(node),
                 reason: PruneReason::NoNearer { distance, best },
+                at: PruneAt::Test,
             });
             return true;
         }

@@ -36,27 +36,28 @@
 //!
 //! Every query of [`SpatialIndex`] is answered exactly as [`BruteForce`](super::BruteForce)
 //! answers it (a primitive with a NaN or infinite coordinate is left out of the tree and never
-//! reported), and reports its steps to an [`Observer`]:
+//! reported), and reports its steps to an [`Observer`] (every structure's event order is
+//! written as a grammar in [`observe`](super::observe#the-order-of-events)):
 //!
 //! - **Build** ([`Bvh::build_observed`]): per node, depth-first and first child first,
 //!   `BuildNode` (its index in [`Bvh::nodes`], parent, depth, size), then `BuildSplit`
 //!   (axis-aligned plane, sizes of both sides, SAH cost for SAH splits) or `BuildLeaf`. The
 //!   returned [`SplitRecord`]s keep each SAH cost curve.
 //! - **Ray first hit / any hit / all hits**: `RayBoundTest` of the root, then for each node
-//!   popped from the stack either `Prune(BeyondBestHit)` (the best hit, or `t_max`, has
-//!   meanwhile moved before its entry) or `EnterNode`; at an inner node `RayBoundTest` of
-//!   both children, `Prune(RayMissed | BeyondBestHit)` for a child refused, and
+//!   popped from the stack either `Prune(BeyondBestHit, at Pop)` (the best hit, or `t_max`,
+//!   has meanwhile moved before its entry) or `EnterNode`; at an inner node `RayBoundTest` of
+//!   both children, `Prune(RayMissed | BeyondBestHit, at Test)` for a child refused, and
 //!   `ChildQueued` for the others, nearer entry first (`rank` 0); at a leaf one
 //!   `PrimitiveTest` per primitive and `NewBest` when the best hit improves (first hit
-//!   only). An any-hit query that finds a hit reports `Prune(AlreadyHit)` for every node
-//!   still waiting.
+//!   only). An any-hit query that finds a hit reports `Prune(AlreadyHit, at Stop)` for every
+//!   node still waiting.
 //! - **k nearest**: the same walk with `DistanceBoundTest` instead of `RayBoundTest`,
 //!   `Prune(NoNearer)` instead of `BeyondBestHit`, children queued nearer first,
 //!   `PrimitiveTest(Distance)` per primitive and `NewBest` (with its distance) when one
 //!   enters the k best.
-//! - **Range**: `Prune(NoOverlap)` for the root or a child whose volume misses the region,
-//!   `ChildQueued` (key 0, first child first) for the others, `EnterNode` when popped,
-//!   `PrimitiveTest(Overlap | NoOverlap)` per primitive of a leaf.
+//! - **Range**: `Prune(NoOverlap, at Test)` for the root or a child whose volume misses the
+//!   region, `ChildQueued` (key 0, first child first) for the others, `EnterNode` when
+//!   popped, `PrimitiveTest(Overlap | NoOverlap)` per primitive of a leaf.
 //! - **Collision**: `NodePairTest` per pair of nodes popped (the roots first; of an
 //!   overlapping pair, the larger node's children are paired with the other node, first
 //!   child first), `PairTest` per primitive pair of two overlapping leaves.

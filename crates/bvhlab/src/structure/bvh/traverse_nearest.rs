@@ -11,7 +11,8 @@ use super::Bvh;
 use super::stack::{Entry, Stack};
 use super::volume::{GROW, NodeVolume, query_slack};
 use crate::structure::{
-    Event, Nearest, NearestSet, NodeId, Observer, PrimitiveResult, PruneReason, QueryCost, Traced,
+    Event, Nearest, NearestSet, NodeId, Observer, PrimitiveResult, PruneAt, PruneReason, QueryCost,
+    Traced,
 };
 use crate::{Primitive, Vector};
 
@@ -30,11 +31,11 @@ where
     /// non-finite point or `k = 0`.
     ///
     /// Events, in order: `DistanceBoundTest` for the root and then for both children of each
-    /// inner node entered, `Prune(NoNearer)` for a child beyond the bound, `ChildQueued` for
-    /// the others nearer first; when a node is popped, `Prune(NoNearer)` if the bound has
-    /// meanwhile dropped below its distance, else `EnterNode`, then at a leaf a
-    /// `PrimitiveTest` with each primitive's distance and `NewBest` when it enters the k
-    /// best.
+    /// inner node entered, `Prune(NoNearer, at Test)` for a child beyond the bound,
+    /// `ChildQueued` for the others nearer first; when a node is popped,
+    /// `Prune(NoNearer, at Pop)` if the bound has meanwhile dropped below its distance, else
+    /// `EnterNode`, then at a leaf a `PrimitiveTest` with each primitive's distance and
+    /// `NewBest` when it enters the k best.
     pub(super) fn k_nearest_impl<O: Observer<P::Point>>(
         &self,
         point: P::Point,
@@ -64,6 +65,7 @@ where
                         distance: entry.key,
                         best: bound,
                     },
+                    at: PruneAt::Pop,
                 });
                 continue;
             }
@@ -136,6 +138,7 @@ where
                     distance,
                     best: bound,
                 },
+                at: PruneAt::Test,
             });
             return None;
         }

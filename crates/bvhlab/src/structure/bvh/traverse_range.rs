@@ -8,7 +8,7 @@ use super::stack::{Entry, Stack};
 use super::volume::{NodeVolume, PreparedRange};
 use crate::Primitive;
 use crate::structure::{
-    Event, NodeId, Observer, PrimitiveResult, PruneReason, QueryCost, RangeShape, Traced,
+    Event, NodeId, Observer, PrimitiveResult, PruneAt, PruneReason, QueryCost, RangeShape, Traced,
 };
 
 impl<B, P> Bvh<B, P>
@@ -19,8 +19,8 @@ where
     /// The primitives that share a point with `shape`, ascending.
     ///
     /// Events, in order: for the root and then for both children of each inner node entered,
-    /// `Prune(NoOverlap)` when the volume misses the region, else `ChildQueued` (key 0, first
-    /// child first); `EnterNode` when a node is popped, then at a leaf a `PrimitiveTest`
+    /// `Prune(NoOverlap, at Test)` when the volume misses the region, else `ChildQueued` (key
+    /// 0, first child first); `EnterNode` when a node is popped, then at a leaf a `PrimitiveTest`
     /// (`Overlap` or `NoOverlap`) per primitive.
     pub(super) fn range_impl<O: Observer<P::Point>>(
         &self,
@@ -108,6 +108,7 @@ where
         observer.on(Event::Prune {
             node: NodeId(node),
             reason: PruneReason::NoOverlap,
+            at: PruneAt::Test,
         });
         None
     }

@@ -11,7 +11,8 @@ use super::stack::{Entry, Stack};
 use super::volume::{GROW, NodeVolume, PreparedRay};
 use crate::structure::query::by_t_then_prim;
 use crate::structure::{
-    Event, Hit, HitTracker, NodeId, Observer, PrimitiveResult, PruneReason, QueryCost, Traced,
+    Event, Hit, HitTracker, NodeId, Observer, PrimitiveResult, PruneAt, PruneReason, QueryCost,
+    Traced,
 };
 use crate::{Primitive, Ray};
 
@@ -208,10 +209,11 @@ where
 
     /// The shared walk. Events, in order: for the root and then for both children of each
     /// inner node entered, `RayBoundTest` and, for a child refused, `Prune` (`RayMissed` or
-    /// `BeyondBestHit`); `ChildQueued` for the others in visiting order; when a node is
-    /// popped, `Prune(BeyondBestHit)` if the best hit has meanwhile moved before its entry,
-    /// else `EnterNode`, then at a leaf the visitor's `PrimitiveTest`s and `NewBest`s. When
-    /// the visitor ends the query, `Prune(AlreadyHit)` for every node still waiting.
+    /// `BeyondBestHit`, at `Test`); `ChildQueued` for the others in visiting order; when a node
+    /// is popped, `Prune(BeyondBestHit, at Pop)` if the best hit has meanwhile moved before its
+    /// entry, else `EnterNode`, then at a leaf the visitor's `PrimitiveTest`s and `NewBest`s.
+    /// When the visitor ends the query, `Prune(AlreadyHit, at Stop)` for every node still
+    /// waiting.
     fn walk<Vis: RayVisitor<P>, O: Observer<P::Point>>(
         &self,
         ray: &Ray<P::Point>,
@@ -236,6 +238,7 @@ where
                         t_enter: entry.key,
                         best_t: limit,
                     },
+                    at: PruneAt::Pop,
                 });
                 continue;
             }
@@ -256,6 +259,7 @@ where
                         observer.on(Event::Prune {
                             node: NodeId(rest.node),
                             reason: PruneReason::AlreadyHit,
+                            at: PruneAt::Stop,
                         });
                     }
                 }
@@ -311,6 +315,7 @@ where
         observer.on(Event::Prune {
             node: NodeId(node),
             reason,
+            at: PruneAt::Test,
         });
         None
     }

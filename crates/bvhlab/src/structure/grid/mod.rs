@@ -11,16 +11,18 @@
 //! - `tolerance` and `probe` (crate-private): the rounding tolerances and the per-query
 //!   bookkeeping that the grid and the 2^D tree ([`super::octree`]) share.
 //!
-//! Query events: ray queries report [`Event::CellEnter`] for each cell walked (with its
-//! coordinates and `[t_enter, t_exit]`), [`Event::PrimitiveTest`] (including
-//! `AlreadyTested` for mailboxed primitives), [`Event::HitBeyondRegion`] for a hit beyond the
-//! current cell, [`Event::NewBest`] (first hit) and a final [`Event::Prune`] with
-//! `BeyondBestHit` for the cell at which the walk stops. The k-nearest query reports
-//! [`Event::DistanceBoundTest`] for each cell it measures, [`Event::EnterNode`] for each cell
-//! it searches, `Prune(NoNearer)` for cells it drops. Range reports `EnterNode` per cell and
-//! `Prune(NoOverlap)` for cells a ball misses; collision reports [`Event::NodePairTest`] for
-//! each pair of non-empty overlapping cells and [`Event::PairTest`] per primitive pair. Cells
-//! are named by their linear index ([`Grid::cell_index`]).
+//! Query events (their order is written as a grammar in
+//! [`observe`](crate::structure::observe#the-order-of-events)): ray queries report
+//! [`Event::CellEnter`] for each cell walked (with its coordinates and `[t_enter, t_exit]`),
+//! [`Event::PrimitiveTest`] (including `AlreadyTested` for mailboxed primitives),
+//! [`Event::HitBeyondRegion`] for a hit beyond the current cell, [`Event::NewBest`] (first
+//! hit) and a final [`Event::Prune`] (`BeyondBestHit`, at `Stop`) for the cell at which the
+//! walk stops. The k-nearest query reports [`Event::DistanceBoundTest`] for each cell it
+//! measures, [`Event::EnterNode`] for each cell it searches, `Prune(NoNearer, at Test)` for
+//! cells it drops. Range reports `EnterNode` per cell and `Prune(NoOverlap, at Test)` for
+//! cells a ball misses; collision reports [`Event::NodePairTest`] for each pair of non-empty
+//! overlapping cells and [`Event::PairTest`] per primitive pair. Cells are named by their
+//! linear index ([`Grid::cell_index`]).
 //!
 //! [`Event::CellEnter`]: crate::Event::CellEnter
 //! [`Event::PrimitiveTest`]: crate::Event::PrimitiveTest

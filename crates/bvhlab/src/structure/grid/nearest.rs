@@ -16,7 +16,7 @@
 use super::layout::{CellCoords, Grid, cells_in};
 use super::probe::NearestProbe;
 use super::tolerance::{box_distance, box_max_abs, max_abs, may_be_nearer};
-use crate::structure::{Event, Nearest, NodeId, Observer, PruneReason, Traced};
+use crate::structure::{Event, Nearest, NodeId, Observer, PruneAt, PruneReason, Traced};
 use crate::{Primitive, Vector};
 
 impl<P: Primitive> Grid<P> {
@@ -95,6 +95,7 @@ impl<P: Primitive> Grid<P> {
                         distance: distance as f32,
                         best,
                     },
+                    at: PruneAt::Test,
                 });
                 return;
             }

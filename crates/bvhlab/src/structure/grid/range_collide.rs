@@ -6,7 +6,7 @@ use super::layout::{Grid, cells_in};
 use super::probe::{PairCollector, prim_id, test_range};
 use super::tolerance::{box_max_abs, is_prunable_range, range_box, range_may_touch};
 use crate::structure::{
-    Event, Mailbox, NodeId, Observer, PruneReason, QueryCost, RangeShape, Traced,
+    Event, Mailbox, NodeId, Observer, PruneAt, PruneReason, QueryCost, RangeShape, Traced,
 };
 use crate::{BoundingVolume, Primitive};
 
@@ -52,6 +52,7 @@ impl<P: Primitive> Grid<P> {
                         observer.on(Event::Prune {
                             node,
                             reason: PruneReason::NoOverlap,
+                            at: PruneAt::Test,
                         });
                         continue;
                     }

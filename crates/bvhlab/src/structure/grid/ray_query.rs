@@ -15,7 +15,7 @@ use super::layout::Grid;
 use super::probe::RayProbe;
 use super::tolerance::RayTolerance;
 use crate::structure::query::by_t_then_prim;
-use crate::structure::{Event, Hit, HitTracker, NodeId, Observer, PruneReason, Traced};
+use crate::structure::{Event, Hit, HitTracker, NodeId, Observer, PruneAt, PruneReason, Traced};
 use crate::{Primitive, Ray};
 
 /// Reports entering a cell.
@@ -50,6 +50,7 @@ fn beyond<V: crate::Vector, O: Observer<V>>(
                 t_enter: visit.t_enter as f32,
                 best_t: limit,
             },
+            at: PruneAt::Stop,
         });
     }
     beyond

@@ -8,15 +8,19 @@
 //! - [`range_collide`]: range, and tree-against-tree collision by simultaneous descent.
 //! - [`validate`]: invariants and statistics.
 //!
-//! Query events: ray queries report [`Event::RayBoundTest`] per cell tested (with
-//! `Prune(RayMissed)` on a miss), [`Event::ChildQueued`] for the children met in order of
-//! entry `t`, [`Event::EnterNode`], [`Event::PrimitiveTest`] (including `AlreadyTested`),
-//! [`Event::HitBeyondRegion`] for a hit beyond the current leaf, [`Event::NewBest`] (first
-//! hit) and `Prune(BeyondBestHit)` for the cells skipped once a nearer hit is known. The
-//! k-nearest query reports [`Event::DistanceBoundTest`] per cell, `ChildQueued` (nearest
-//! first) or `Prune(NoNearer)` per child, `EnterNode` per cell taken from the queue; range
-//! reports `EnterNode` or `Prune(NoOverlap)`; collision reports [`Event::NodePairTest`] and
-//! [`Event::PairTest`]. Nodes are named by their index (the root is 0).
+//! Query events (their order is written as a grammar in
+//! [`observe`](crate::structure::observe#the-order-of-events)): ray queries report
+//! [`Event::RayBoundTest`] per cell tested (with `Prune(RayMissed, at Test)` on a miss),
+//! [`Event::ChildQueued`] for the children met in order of entry `t`, [`Event::EnterNode`],
+//! [`Event::PrimitiveTest`] (including `AlreadyTested`), [`Event::HitBeyondRegion`] for a hit
+//! beyond the current leaf, [`Event::NewBest`] (first hit) and `Prune(BeyondBestHit, at Pop)`
+//! for the cells skipped once a nearer hit is known. The k-nearest query reports
+//! [`Event::DistanceBoundTest`] per cell, `ChildQueued` (nearest first) or
+//! `Prune(NoNearer, at Test)` per child, `EnterNode` per cell taken from the queue (the first
+//! one no nearer than the best is `Prune(NoNearer, at Pop)`, and ends the search); range
+//! reports `EnterNode` or `Prune(NoOverlap, at Pop)` per cell popped; collision reports
+//! [`Event::NodePairTest`] and [`Event::PairTest`]. Nodes are named by their index (the root
+//! is 0).
 //!
 //! [`Event::RayBoundTest`]: crate::Event::RayBoundTest
 //! [`Event::ChildQueued`]: crate::Event::ChildQueued

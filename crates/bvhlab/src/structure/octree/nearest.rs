@@ -13,7 +13,7 @@ use std::collections::BinaryHeap;
 use super::layout::{Orthtree, child_box_at, child_count, split_point};
 use crate::structure::grid::probe::{NearestProbe, Queued};
 use crate::structure::grid::tolerance::{box_distance, box_max_abs, max_abs, may_be_nearer};
-use crate::structure::{Event, Nearest, NodeId, Observer, PruneReason, Traced};
+use crate::structure::{Event, Nearest, NodeId, Observer, PruneAt, PruneReason, Traced};
 use crate::volume::Aabb;
 use crate::{Primitive, Vector};
 
@@ -62,6 +62,7 @@ impl<P: Primitive> Orthtree<P> {
                         distance: distance as f32,
                         best,
                     },
+                    at: PruneAt::Pop,
                 });
                 break;
             }
@@ -118,6 +119,7 @@ impl<P: Primitive> Orthtree<P> {
                             distance: d as f32,
                             best,
                         },
+                        at: PruneAt::Test,
                     });
                 }
             }

@@ -5,7 +5,7 @@ use super::layout::{Orthtree, child_box_at, child_count, split_point};
 use crate::structure::grid::probe::{PairCollector, prim_id, test_range};
 use crate::structure::grid::tolerance::{box_max_abs, is_prunable_range, range_may_touch};
 use crate::structure::{
-    Event, Mailbox, NodeId, Observer, PruneReason, QueryCost, RangeShape, Traced,
+    Event, Mailbox, NodeId, Observer, PruneAt, PruneReason, QueryCost, RangeShape, Traced,
 };
 use crate::volume::Aabb;
 use crate::{BoundingVolume, Primitive, Vector};
@@ -50,6 +50,7 @@ impl<P: Primitive> Orthtree<P> {
                 observer.on(Event::Prune {
                     node: id,
                     reason: PruneReason::NoOverlap,
+                    at: PruneAt::Pop,
                 });
                 continue;
             }

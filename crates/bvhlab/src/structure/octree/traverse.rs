@@ -15,7 +15,7 @@ use super::layout::{Orthtree, child_box_at, child_count, split_point};
 use crate::structure::grid::probe::RayProbe;
 use crate::structure::grid::tolerance::{RayTolerance, ray_box_interval};
 use crate::structure::query::by_t_then_prim;
-use crate::structure::{Event, Hit, HitTracker, NodeId, Observer, PruneReason, Traced};
+use crate::structure::{Event, Hit, HitTracker, NodeId, Observer, PruneAt, PruneReason, Traced};
 use crate::volume::Aabb;
 use crate::{Primitive, Ray, Vector};
 
@@ -182,6 +182,7 @@ impl<P: Primitive> Orthtree<P> {
                         t_enter: cell.t_enter as f32,
                         best_t: limit,
                     },
+                    at: PruneAt::Pop,
                 });
                 continue;
             }
@@ -361,6 +362,7 @@ fn bound_test<P: Primitive, O: Observer<P::Point>>(
         observer.on(Event::Prune {
             node,
             reason: PruneReason::RayMissed,
+            at: PruneAt::Test,
         });
     }
 }
