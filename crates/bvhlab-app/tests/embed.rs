@@ -1,15 +1,18 @@
 //! Embedding: the address's parameters, where the lab starts from, the 3D half kept across
-//! reloads, and the scripting API driven command by command through real frames.
+//! reloads, and the scripting API driven command by command through real frames. What the
+//! tests change themselves, they change with actions, as the panels do.
 
 mod common;
 
 use bvhlab::glam::{Vec2, Vec3};
 use bvhlab_app::LabApp;
-use bvhlab_app::app::Dimension;
 use bvhlab_app::embed::{PARAMETERS, Scripting, StartParams, start};
+use bvhlab_app::model::lab2d::RayHandles;
+use bvhlab_app::model::orbit_camera::OrbitCamera;
+use bvhlab_app::model::presets::Preset;
+use bvhlab_app::model::structures::{BuildSettings, StructureKind};
+use bvhlab_app::model::{Action, Action2d, Action3d, Dimension, HalfAction};
 use bvhlab_app::persist::{STORAGE_KEY, SavedState, StructureName, TaskName, to_file};
-use bvhlab_app::presets::Preset;
-use bvhlab_app::structures::StructureKind;
 use egui_kittest::Harness;
 
 /// A harness over `app`, run until it settles.
@@ -21,10 +24,16 @@ fn harness(app: LabApp) -> Harness<'static, LabApp> {
     h
 }
 
+/// The lab opened on `preset`.
+fn with_preset(preset: Preset) -> LabApp {
+    LabApp::with([Action2d::LoadPreset(preset).into()])
+}
+
 /// Frames until the 3D half is idle (loaded and built), or a failure.
 fn until_idle(h: &mut Harness<'_, LabApp>) {
     for _ in 0..2_000 {
-        if !h.state().lab3d.busy() && h.state().lab3d.built.is_some() {
+        let three = h.state().lab().three();
+        if !three.busy() && three.half.lane.current(three.revision()).is_some() {
             h.run();
             return;
         }
@@ -128,15 +137,16 @@ fn parameters_set_the_scene_structure_ray_and_step_and_the_answer_is_brute_force
     assert_eq!(started.message, None);
     let mut h = harness(started.app);
     let app = h.state();
-    assert_eq!(app.preset, Preset::KdHandful);
-    assert_eq!(app.lane.settings.kind, StructureKind::AabbTree);
-    let ray = app.ray.expect("the ray").ray().expect("a valid ray");
+    let two = app.lab().two();
+    assert_eq!(two.preset, Preset::KdHandful);
+    assert_eq!(two.half.lane.settings.kind, StructureKind::AabbTree);
+    let ray = two.ray.expect("the ray").ray().expect("a valid ray");
     assert_eq!(ray.origin(), Vec2::new(0.0, 4.5));
     assert_eq!(ray.dir(), Vec2::new(1.0, 0.0));
-    assert_eq!(app.playback.step, 3);
+    assert_eq!(two.half.playback.step, 3);
     let query = app.report.query.clone().expect("the ray's report");
     // Brute force, by hand: every segment's hit, the nearest.
-    let brute = app
+    let brute = two
         .scene
         .primitives()
         .segments
@@ -155,13 +165,20 @@ fn parameters_set_the_scene_structure_ray_and_step_and_the_answer_is_brute_force
 #[test]
 fn a_saved_state_wins_over_the_parameters_unless_fresh_and_a_broken_one_is_kept() {
     let params = StartParams::parse("preset=kd-tree&structure=grid");
-    let mut edited = LabApp::with_preset(Preset::QuadtreeHandful);
-    edited.lane.settings.kind = StructureKind::Bsp;
-    let saved = serde_json::to_string(&SavedState::capture(&edited)).expect("json");
+    let settings = BuildSettings {
+        kind: StructureKind::Bsp,
+        ..Preset::QuadtreeHandful.build().1
+    };
+    let edited = LabApp::with([
+        Action2d::LoadPreset(Preset::QuadtreeHandful).into(),
+        HalfAction::SetStructure(settings).into(),
+    ]);
+    let saved = serde_json::to_string(&SavedState::capture(edited.lab())).expect("json");
 
     let restored = start(None, &params, Some(&saved));
-    assert_eq!(restored.app.preset, Preset::QuadtreeHandful);
-    assert_eq!(restored.app.lane.settings.kind, StructureKind::Bsp);
+    let two = restored.app.lab().two();
+    assert_eq!(two.preset, Preset::QuadtreeHandful);
+    assert_eq!(two.half.lane.settings.kind, StructureKind::Bsp);
     assert!(!restored.saved_failed);
 
     let fresh = start(
@@ -169,8 +186,9 @@ fn a_saved_state_wins_over_the_parameters_unless_fresh_and_a_broken_one_is_kept(
         &StartParams::parse("preset=kd-tree&structure=grid&fresh=1"),
         Some(&saved),
     );
-    assert_eq!(fresh.app.preset, Preset::KdHandful);
-    assert_eq!(fresh.app.lane.settings.kind, StructureKind::Grid);
+    let two = fresh.app.lab().two();
+    assert_eq!(two.preset, Preset::KdHandful);
+    assert_eq!(two.half.lane.settings.kind, StructureKind::Grid);
 
     let broken = start(None, &params, Some("{\"version\": 1, \"k\": \"many\""));
     assert!(
@@ -178,7 +196,7 @@ fn a_saved_state_wins_over_the_parameters_unless_fresh_and_a_broken_one_is_kept(
         "kept until the student changes something"
     );
     assert_eq!(
-        broken.app.lane.settings.kind,
+        broken.app.lab().two().half.lane.settings.kind,
         StructureKind::Grid,
         "the parameters apply"
     );
@@ -194,39 +212,50 @@ fn the_3d_half_comes_back_after_a_reload_with_its_mesh_camera_ray_and_point() {
     assert_eq!(started.message, None);
     let mut h = harness(started.app);
     until_idle(&mut h);
-    {
-        let lab = &h.state().lab3d;
-        assert_eq!(h.state().dimension, Dimension::Three);
+    let camera = {
+        let lab = h.state().lab().three();
+        assert_eq!(h.state().lab().dimension(), Dimension::Three);
         assert_eq!(
             lab.mesh.as_ref().and_then(|m| m.slug.as_deref()),
             Some("torus")
         );
-        assert_eq!(lab.settings.kind, StructureKind::KdTree);
+        assert_eq!(lab.half.lane.settings.kind, StructureKind::KdTree);
         let ray = lab.ray.expect("the address's ray, not the default one");
         assert_eq!(ray.origin(), Vec3::new(0.0, 0.0, 5.0));
         assert_eq!(lab.point, Some(Vec3::splat(0.5)));
-    }
+        lab.camera
+    };
     // The student turns the camera and moves the point; the lab saves; the page reloads.
-    h.state_mut().lab3d.camera.yaw += 0.7;
-    h.state_mut().lab3d.point = Some(Vec3::new(-0.25, 0.5, 0.75));
-    h.run();
-    let before = SavedState::capture(h.state());
+    common::act(
+        &mut h,
+        Action3d::SetCamera(OrbitCamera {
+            yaw: camera.yaw + 0.7,
+            ..camera
+        }),
+    );
+    common::act(
+        &mut h,
+        Action3d::SetPoint(Some(Vec3::new(-0.25, 0.5, 0.75))),
+    );
+    until_idle(&mut h);
+    let before = SavedState::capture(h.state().lab());
     let saved = serde_json::to_string(&before).expect("json");
     let again = start(None, &params, Some(&saved));
     let mut h2 = harness(again.app);
     until_idle(&mut h2);
-    let (a, b) = (&h.state().lab3d, &h2.state().lab3d);
-    assert_eq!(h2.state().dimension, Dimension::Three);
+    let (a, b) = (h.state().lab().three(), h2.state().lab().three());
+    assert_eq!(h2.state().lab().dimension(), Dimension::Three);
     assert_eq!(
         b.mesh.as_ref().and_then(|m| m.slug.as_deref()),
         Some("torus")
     );
-    assert_eq!(b.settings, a.settings);
+    assert_eq!(b.half.lane.settings, a.half.lane.settings);
     assert_eq!(b.camera, a.camera, "the turned camera, not a fresh framing");
     assert_eq!(b.ray, a.ray);
     assert_eq!(b.point, a.point);
-    assert_eq!(b.radius, a.radius);
-    assert_eq!(SavedState::capture(h2.state()), before);
+    assert_eq!(b.half.radius, a.half.radius);
+    assert_eq!(b.half.task, a.half.task);
+    assert_eq!(SavedState::capture(h2.state().lab()), before);
     // The answers are the same too.
     assert_eq!(
         h2.state()
@@ -244,12 +273,9 @@ fn the_3d_half_comes_back_after_a_reload_with_its_mesh_camera_ray_and_point() {
 
 #[test]
 fn a_file_mesh_comes_back_as_its_name_with_a_message_and_everything_else() {
-    let mut h = harness(LabApp {
-        dimension: Dimension::Three,
-        ..LabApp::default()
-    });
+    let mut h = harness(LabApp::with([Action::Show(Dimension::Three)]));
     until_idle(&mut h);
-    let mut state = SavedState::capture(h.state());
+    let mut state = SavedState::capture(h.state().lab());
     let three = state.three.as_mut().expect("the 3D half");
     three.mesh = bvhlab_app::persist::MeshState::File("my-part.stl".to_owned());
     three.structure.kind = StructureName::Bsp;
@@ -257,9 +283,9 @@ fn a_file_mesh_comes_back_as_its_name_with_a_message_and_everything_else() {
     let started = start(None, &StartParams::default(), Some(&json));
     let mut h2 = harness(started.app);
     until_idle(&mut h2);
-    let lab = &h2.state().lab3d;
-    assert_eq!(lab.settings.kind, StructureKind::Bsp);
-    let message = h2.state().message.clone().unwrap_or_default();
+    let lab = h2.state().lab();
+    assert_eq!(lab.three().half.lane.settings.kind, StructureKind::Bsp);
+    let message = lab.message().unwrap_or_default();
     assert!(
         message.contains("my-part.stl") && message.contains("drop it"),
         "{message}"
@@ -268,22 +294,32 @@ fn a_file_mesh_comes_back_as_its_name_with_a_message_and_everything_else() {
 
 #[test]
 fn export_then_import_gives_the_same_state_in_both_halves() {
-    let mut h = harness(LabApp::with_preset(Preset::RandomSegments));
-    h.state_mut().ray = Some(bvhlab_app::app::RayHandles {
-        origin: Vec2::new(-1.0, 3.0),
-        target: Vec2::new(4.0, 5.0),
-    });
-    h.state_mut().dimension = Dimension::Three;
-    h.run();
+    let mut h = harness(with_preset(Preset::RandomSegments));
+    common::act(
+        &mut h,
+        Action2d::SetRay(Some(RayHandles {
+            origin: Vec2::new(-1.0, 3.0),
+            target: Vec2::new(4.0, 5.0),
+        })),
+    );
+    common::act(&mut h, Action::Show(Dimension::Three));
     until_idle(&mut h);
-    h.state_mut().lab3d.settings.leaf_size = 2;
-    h.run();
-    let file = to_file(h.state());
+    // The structure of the half shown: the 3D half's.
+    let settings = BuildSettings {
+        leaf_size: 2,
+        ..h.state().lab().three().half.lane.settings
+    };
+    common::act(&mut h, HalfAction::SetStructure(settings));
+    until_idle(&mut h);
+    assert_eq!(h.state().lab().three().half.lane.settings.leaf_size, 2);
+    let file = to_file(h.state().lab());
     let mut other = LabApp::default();
-    bvhlab_app::persist::open_file(&mut other, &file).expect("the exported file opens");
+    other
+        .apply(bvhlab_app::persist::open_file(&file).expect("the exported file opens"))
+        .expect("applies");
     assert_eq!(
-        SavedState::capture_full(&other),
-        SavedState::capture_full(h.state())
+        SavedState::capture_full(other.lab()),
+        SavedState::capture_full(h.state().lab())
     );
 }
 
@@ -307,7 +343,7 @@ fn replies(scripting: &mut Scripting<u32>, h: &mut Harness<'_, LabApp>, sent: &m
 
 #[test]
 fn commands_are_applied_in_order_and_answered_with_the_report() {
-    let mut h = harness(LabApp::with_preset(Preset::KdHandful));
+    let mut h = harness(with_preset(Preset::KdHandful));
     let mut scripting = Scripting::new(false);
     let mut sent = Sent::new();
     let id = |n: u32| n.to_string();
@@ -371,8 +407,9 @@ fn commands_are_applied_in_order_and_answered_with_the_report() {
         assert!(error.to_lowercase().contains(part), "reply {n}: {error}");
     }
     // The refused commands changed nothing.
-    assert_eq!(h.state().lane.settings.kind, StructureKind::KdTree);
-    assert_eq!(h.state().ray.map(|r| r.origin), Some(Vec2::new(0.0, 4.5)));
+    let two = h.state().lab().two();
+    assert_eq!(two.half.lane.settings.kind, StructureKind::KdTree);
+    assert_eq!(two.ray.map(|r| r.origin), Some(Vec2::new(0.0, 4.5)));
 }
 
 #[test]
@@ -407,8 +444,8 @@ fn a_reply_waits_for_a_3d_build_and_export_scene_gives_a_scene_that_loads() {
     replies(&mut scripting, &mut other, &mut sent);
     assert_eq!(sent[0].1["ok"], true, "{}", sent[0].1);
     until_idle(&mut other);
-    assert_eq!(other.state().lab3d.ray, h.state().lab3d.ray);
-    assert_eq!(other.state().dimension, Dimension::Three);
+    assert_eq!(other.state().lab().three().ray, h.state().lab().three().ray);
+    assert_eq!(other.state().lab().dimension(), Dimension::Three);
 }
 
 #[test]

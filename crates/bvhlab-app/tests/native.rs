@@ -4,10 +4,11 @@
 mod common;
 
 use bvhlab::glam::Vec2;
-use bvhlab_app::app::RayHandles;
+use bvhlab_app::model::lab2d::RayHandles;
+use bvhlab_app::model::presets::Preset;
+use bvhlab_app::model::structures::{BuildSettings, StructureKind};
+use bvhlab_app::model::{Action, Action2d, HalfAction};
 use bvhlab_app::native::NativeLab;
-use bvhlab_app::presets::Preset;
-use bvhlab_app::structures::StructureKind;
 use egui_kittest::Harness;
 
 /// The lab's frames, with a test switch that makes the next frame panic.
@@ -36,6 +37,22 @@ fn harness(lab: NativeLab) -> Harness<'static, Guarded> {
     )
 }
 
+/// Applies `action` to the lab between frames (as the panels ask for it).
+fn apply(h: &mut Harness<'_, Guarded>, action: impl Into<Action>) {
+    let action = action.into();
+    if let Err(e) = h.state_mut().lab.app.apply(action.clone()) {
+        panic!("{action:?} was refused: {e}");
+    }
+}
+
+/// The 2D structure's settings with `kind`.
+fn structure(h: &Harness<'_, Guarded>, kind: StructureKind) -> HalfAction {
+    HalfAction::SetStructure(BuildSettings {
+        kind,
+        ..h.state().lab.app.lab().two().half.lane.settings
+    })
+}
+
 fn temp_state_file(name: &str) -> std::path::PathBuf {
     let dir = std::env::temp_dir().join(format!("bvhlab-native-{}-{name}", std::process::id()));
     std::fs::remove_dir_all(&dir).ok();
@@ -47,31 +64,33 @@ fn a_panicking_frame_goes_back_to_the_last_saved_state_and_the_window_stays() {
     let path = temp_state_file("panic");
     let mut h = harness(NativeLab::open(Some(path.clone())));
     h.run();
-    h.state_mut().lab.app.load_preset(Preset::QuadtreeHandful);
-    h.state_mut().lab.app.lane.settings.kind = StructureKind::Bsp;
+    apply(&mut h, Action2d::LoadPreset(Preset::QuadtreeHandful));
+    let action = structure(&h, StructureKind::Bsp);
+    apply(&mut h, action);
     let ray = RayHandles {
         origin: Vec2::new(0.0, 4.5),
         target: Vec2::new(1.0, 4.5),
     };
-    h.state_mut().lab.app.ray = Some(ray);
+    apply(&mut h, Action2d::SetRay(Some(ray)));
     h.run();
     let saved = std::fs::read_to_string(&path).expect("the state file was written");
     assert!(saved.contains("\"bsp\""), "{saved}");
 
     // A change not yet saved, then a frame that panics.
-    h.state_mut().lab.app.lane.settings.kind = StructureKind::Grid;
+    let action = structure(&h, StructureKind::Grid);
+    apply(&mut h, action);
     h.state_mut().panic_next = true;
     h.state_mut().time -= 0.9; // within the autosave interval: the grid is not saved yet
     h.step();
-    let app = &h.state().lab.app;
+    let lab = h.state().lab.app.lab();
     assert_eq!(
-        app.lane.settings.kind,
+        lab.two().half.lane.settings.kind,
         StructureKind::Bsp,
         "back to the saved state"
     );
-    assert_eq!(app.preset, Preset::QuadtreeHandful);
-    assert_eq!(app.ray, Some(ray));
-    let message = app.message.clone().unwrap_or_default();
+    assert_eq!(lab.two().preset, Preset::QuadtreeHandful);
+    assert_eq!(lab.two().ray, Some(ray));
+    let message = lab.message().unwrap_or_default();
     assert!(
         message.contains("a bug in a frame, for the test") && message.contains("last saved"),
         "{message}"
@@ -87,16 +106,16 @@ fn a_restart_opens_the_saved_state_and_a_broken_file_falls_back_with_a_message()
     let path = temp_state_file("restart");
     let mut h = harness(NativeLab::open(Some(path.clone())));
     h.run();
-    h.state_mut().lab.app.load_preset(Preset::RandomPoints);
+    apply(&mut h, Action2d::LoadPreset(Preset::RandomPoints));
     h.run();
     drop(h);
     let reopened = NativeLab::open(Some(path.clone()));
-    assert_eq!(reopened.app.preset, Preset::RandomPoints);
+    assert_eq!(reopened.app.lab().two().preset, Preset::RandomPoints);
 
     std::fs::write(&path, "{\"version\": 1, \"scene\": 7}").expect("write");
     let broken = NativeLab::open(Some(path.clone()));
-    assert_eq!(broken.app.preset, Preset::default());
-    let message = broken.app.message.clone().unwrap_or_default();
+    assert_eq!(broken.app.lab().two().preset, Preset::default());
+    let message = broken.app.lab().message().unwrap_or_default();
     assert!(message.contains("could not be restored"), "{message}");
     std::fs::remove_dir_all(path.parent().and_then(|p| p.parent()).expect("dir")).ok();
 }

@@ -39,6 +39,9 @@ impl SavedState {
     }
 
     /// [`apply`](Self::apply), with the bare reason as the error.
+    ///
+    /// # Errors
+    /// What is wrong, naming the shape, point or field.
     pub fn restore(&self) -> Result<Action, String> {
         Ok(Action::Restore(Box::new(checked(self)?)))
     }
@@ -52,29 +55,7 @@ fn checked(state: &SavedState) -> Result<Restore, String> {
             state.version
         ));
     }
-    let scene = match &state.scene {
-        SceneState::Preset(p) => p.0.build().0,
-        SceneState::Shapes(shapes) => {
-            if shapes.len() > MAX_SHAPES {
-                return Err(format!(
-                    "the scene has {} shapes; the lab takes at most {MAX_SHAPES}",
-                    shapes.len()
-                ));
-            }
-            let total: usize = shapes.iter().map(|s| s.points.len()).sum();
-            if total > MAX_POINTS {
-                return Err(format!(
-                    "the scene has {total} points; the lab takes at most {MAX_POINTS}"
-                ));
-            }
-            let shapes = shapes
-                .iter()
-                .enumerate()
-                .map(|(i, s)| shape(i, s.kind.into(), &s.points))
-                .collect::<Result<Vec<_>, _>>()?;
-            Scene::from_shapes(shapes)
-        }
-    };
+    let scene = scene(&state.scene)?;
     let n = scene.shapes().len();
     if let Some(&bad) = state.selection.iter().find(|&&i| i >= n) {
         return Err(format!(
@@ -168,6 +149,34 @@ fn checked(state: &SavedState) -> Result<Restore, String> {
         three: three.map(|t| t.restore),
         note,
     })
+}
+
+/// The scene, checked: at most [`MAX_SHAPES`] shapes and [`MAX_POINTS`] points, each shape
+/// valid.
+fn scene(scene: &SceneState) -> Result<Scene, String> {
+    match scene {
+        SceneState::Preset(p) => Ok(p.0.build().0),
+        SceneState::Shapes(shapes) => {
+            if shapes.len() > MAX_SHAPES {
+                return Err(format!(
+                    "the scene has {} shapes; the lab takes at most {MAX_SHAPES}",
+                    shapes.len()
+                ));
+            }
+            let total: usize = shapes.iter().map(|s| s.points.len()).sum();
+            if total > MAX_POINTS {
+                return Err(format!(
+                    "the scene has {total} points; the lab takes at most {MAX_POINTS}"
+                ));
+            }
+            let shapes = shapes
+                .iter()
+                .enumerate()
+                .map(|(i, s)| shape(i, s.kind.into(), &s.points))
+                .collect::<Result<Vec<_>, _>>()?;
+            Ok(Scene::from_shapes(shapes))
+        }
+    }
 }
 
 /// Shape `index`, checked: every coordinate finite and within range, then what

@@ -43,15 +43,23 @@ pub struct ThreeState {
     pub point: Option<StoredPoint3>,
     /// The range query's radius (absent: a tenth of the mesh's size).
     pub radius: Option<Coord>,
+    // The fields below are not in states saved before each half kept its own question and
+    // playback. Absent, each is `None` (not the default lab's value, which the struct's
+    // `default` would give): the restore then takes the 2D half's, as that lab did.
     /// The comparison structure's settings, when two are shown.
+    #[serde(default)]
     pub compare: Option<SettingsState>,
     /// What the 3D half steps through (absent: the 2D half's task).
+    #[serde(default)]
     pub task: Option<TaskName>,
     /// Which version of the algorithm (absent: the 2D half's).
+    #[serde(default)]
     pub variant: Option<VariantName>,
     /// How many nearest neighbours (absent: the 2D half's k).
+    #[serde(default)]
     pub k: Option<usize>,
     /// Where the 3D half's playback is (absent: where the 2D half's is).
+    #[serde(default)]
     pub playback: Option<PlaybackState>,
 }
 
