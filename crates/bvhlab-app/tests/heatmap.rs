@@ -16,10 +16,10 @@ use bvhlab::prelude::*;
 use bvhlab::structure::QueryCost;
 use bvhlab::structure::bvh::{NodeVolume, PreparedRay};
 use bvhlab::{Mesh, Ray3, Triangle3};
-use bvhlab_app::view3d::camera::{OrbitCamera, RayFrame};
-use bvhlab_app::view3d::heatmap::colormap::{self, RAMP};
-use bvhlab_app::view3d::heatmap::gpu::{colorize_shader_source, trace_shader_source};
-use bvhlab_app::view3d::heatmap::{CpuHeatMap, GpuHeatMap, Metric, gpu_heatmap_supported};
+use bvhlab_app::model::orbit_camera::{OrbitCamera, RayFrame};
+use bvhlab_app::render3d::heatmap::colormap::{self, RAMP};
+use bvhlab_app::render3d::heatmap::gpu::{colorize_shader_source, trace_shader_source};
+use bvhlab_app::render3d::heatmap::{CpuHeatMap, GpuHeatMap, Metric, gpu_heatmap_supported};
 use eframe::wgpu;
 use wgpu::util::DeviceExt;
 
@@ -968,7 +968,7 @@ fn a_tree_too_large_for_the_device_is_refused_with_a_clear_error() {
     );
     assert_eq!(
         before,
-        Err(bvhlab_app::view3d::heatmap::HeatMapError::NoTree)
+        Err(bvhlab_app::render3d::heatmap::HeatMapError::NoTree)
     );
     // 48 bytes per triangle: just over the binding limit.
     let limit = gpu.device.limits().max_storage_buffer_binding_size;

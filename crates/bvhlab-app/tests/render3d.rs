@@ -14,8 +14,8 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Instant;
 
 use bvhlab::glam::{Vec2, Vec3};
-use bvhlab_app::view3d::camera::OrbitCamera;
-use bvhlab_app::view3d::gpu::{
+use bvhlab_app::model::orbit_camera::OrbitCamera;
+use bvhlab_app::render3d::gpu::{
     ColorTriangle, DEFAULT_SAMPLES, EguiTarget, Frame3d, Line3d, Marker, MeshData, MeshUploadError,
     OffscreenError, Renderer3d, RgbaImage, headless_device, headless_device_with_limits,
     install_in, paint_3d, read_back, render_and_read, render_offscreen,

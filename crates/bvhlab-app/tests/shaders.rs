@@ -85,15 +85,15 @@ fn check_webgl2(
 /// Shaders the app assembles from parts (WGSL has no `#include`): their name, the source the
 /// app really compiles, and the files it is made of. Those files are checked through it.
 fn assembled() -> Vec<(&'static str, String, [&'static str; 2])> {
-    use bvhlab_app::view3d::heatmap::gpu::{colorize_shader_source, trace_shader_source};
+    use bvhlab_app::render3d::heatmap::gpu::{colorize_shader_source, trace_shader_source};
     vec![
         (
-            "view3d/heatmap (trace)",
+            "render3d/heatmap (trace)",
             trace_shader_source(),
             ["params.wgsl", "trace.wgsl"],
         ),
         (
-            "view3d/heatmap (colorize)",
+            "render3d/heatmap (colorize)",
             colorize_shader_source(),
             ["params.wgsl", "colorize.wgsl"],
         ),
@@ -117,7 +117,7 @@ fn every_shader_parses_and_validates() {
             .display()
             .to_string();
         let file = path.file_name().and_then(|f| f.to_str()).unwrap_or("");
-        let part = name.starts_with("view3d/heatmap")
+        let part = name.starts_with("render3d/heatmap")
             && (LIBRARY_PARTS.contains(&file) || assembled.iter().any(|a| a.2.contains(&file)));
         if part {
             continue;

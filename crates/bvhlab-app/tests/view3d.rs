@@ -3,23 +3,38 @@
 
 mod common;
 
+use bvhlab::Triangle3;
 use bvhlab::glam::Vec2;
 use bvhlab::{BruteForce, SpatialIndex};
 use bvhlab_app::LabApp;
-use bvhlab_app::app::Dimension;
 use bvhlab_app::lab3d::input::{Handle, handles};
-use bvhlab_app::lab3d::mesh::{Mesh3d, MeshSource};
+use bvhlab_app::model::Dimension;
+use bvhlab_app::model::build_job::Structure;
+use bvhlab_app::model::lab3d::Lab3d;
+use bvhlab_app::model::mesh::{Mesh3d, MeshSource};
+use bvhlab_app::model::structures::StructureKind;
+use bvhlab_app::model::{Action3d, HalfAction};
 use bvhlab_app::pseudocode::{Task, line_of};
-use bvhlab_app::structures::StructureKind;
-use common::{click, click_at, count, lab, press, settle};
+use bvhlab_app::report::HeatReport;
+use common::{act, click, click_at, count, lab, press, settle};
 use egui::Key;
 use egui_kittest::Harness;
+
+/// The 3D half of the lab in the harness.
+fn three<'a>(h: &'a Harness<'_, LabApp>) -> &'a Lab3d {
+    h.state().lab().three()
+}
+
+/// The main lane's structure, when it is built on the mesh shown with the lane's settings.
+fn built<'a>(h: &'a Harness<'_, LabApp>) -> Option<&'a Structure<Triangle3>> {
+    let lab = three(h);
+    lab.half.lane.current(lab.revision())
+}
 
 /// Frames run until the 3D view has built its structure (or a limit, which fails).
 fn until_built(h: &mut Harness<'_, LabApp>) -> usize {
     for frame in 0..2_000 {
-        let lab = &h.state().lab3d;
-        if lab.built.is_some() && !lab.busy() {
+        if built(h).is_some() && !three(h).busy() {
             settle(h);
             return frame;
         }
@@ -32,14 +47,28 @@ fn until_built(h: &mut Harness<'_, LabApp>) -> usize {
 fn lab_3d() -> Harness<'static, LabApp> {
     let mut h = lab();
     click(&mut h, "3D: meshes");
-    assert_eq!(h.state().dimension, Dimension::Three);
+    assert_eq!(h.state().lab().dimension(), Dimension::Three);
     until_built(&mut h);
     h
 }
 
+/// The 3D view's area on screen.
+fn view_rect(h: &Harness<'_, LabApp>) -> egui::Rect {
+    h.state().ui.view3d.rect
+}
+
+/// The heat map's report, when it is shown.
+fn heat_report(h: &Harness<'_, LabApp>) -> Option<HeatReport> {
+    h.state()
+        .report
+        .three
+        .as_ref()
+        .and_then(|t| t.heat_map.clone())
+}
+
 /// Clicks the middle of the 3D view; returns the pixel's position in the view.
 fn click_view_middle(h: &mut Harness<'_, LabApp>) -> (Vec2, Vec2) {
-    let rect = h.state().lab3d.view_rect;
+    let rect = view_rect(h);
     assert!(rect.is_positive(), "the view has an area: {rect:?}");
     let at = rect.center() + egui::vec2(3.0, -7.0);
     click_at(h, at);
@@ -49,11 +78,18 @@ fn click_view_middle(h: &mut Harness<'_, LabApp>) -> (Vec2, Vec2) {
     )
 }
 
+/// Asks the half shown for another structure, with the other build settings kept.
+fn set_kind(h: &mut Harness<'_, LabApp>, kind: StructureKind) {
+    let mut settings = three(h).half.lane.settings;
+    settings.kind = kind;
+    act(h, HalfAction::SetStructure(settings));
+}
+
 #[test]
 fn a_click_on_the_bunny_casts_the_camera_ray_and_the_hit_is_brute_forces() {
     let mut h = lab_3d();
     let (pixel, size) = click_view_middle(&mut h);
-    let lab = &h.state().lab3d;
+    let lab = three(&h);
     let expected = lab
         .camera
         .ray_through(pixel, size)
@@ -86,9 +122,9 @@ fn stepping_in_3d_marks_the_lines_and_counts_as_in_2d() {
     let mut h = lab_3d();
     click_view_middle(&mut h);
     press(&mut h, Key::Home);
-    let rec = h.state().lab3d.recorded().expect("recorded").clone();
+    let rec = three(&h).half.lane.recorded().expect("recorded").clone();
     assert!(rec.events.len() > 3);
-    let kind = h.state().lab3d.settings.kind;
+    let kind = three(&h).half.lane.settings.kind;
     for step in 0..=rec.events.len() {
         let report = h.state().report.playback.first().expect("one lane").clone();
         assert_eq!(report.step, step);
@@ -125,71 +161,77 @@ fn every_structure_answers_the_click_and_the_point_like_brute_force() {
     let mut h = lab_3d();
     click_view_middle(&mut h);
     for kind in StructureKind::ALL {
-        h.state_mut().lab3d.settings.kind = kind;
+        set_kind(&mut h, kind);
         until_built(&mut h);
+        assert_eq!(built(&h).map(|s| s.settings.kind), Some(kind));
         for task in [Task::FirstHit, Task::Nearest, Task::Range, Task::AllHits] {
-            h.state_mut().task = task;
-            settle(&mut h);
-            let rec =
-                h.state().lab3d.recorded().unwrap_or_else(|| {
-                    panic!("{kind:?} {task:?}: {:?}", h.state().lab3d.recording)
-                });
+            act(&mut h, HalfAction::SetTask(task));
+            let lane = &three(&h).half.lane;
+            let rec = lane
+                .recorded()
+                .unwrap_or_else(|| panic!("{kind:?} {task:?}: {:?}", lane.recording));
+            assert_eq!(rec.question.task, task, "{kind:?}");
             assert!(rec.agrees(), "{kind:?} {task:?}");
         }
-        h.state_mut().task = Task::FirstHit;
+        act(&mut h, HalfAction::SetTask(Task::FirstHit));
     }
 }
 
 #[test]
 fn stepping_through_a_build_of_the_bunny_makes_every_node() {
     let mut h = lab_3d();
-    h.state_mut().task = Task::Build;
-    settle(&mut h);
+    act(&mut h, HalfAction::SetTask(Task::Build));
+    // The task is the 3D half's own: the 2D half still asks about its ray.
+    assert_eq!(three(&h).half.task, Task::Build);
+    assert_eq!(h.state().lab().two().half.task, Task::FirstHit);
     press(&mut h, Key::End);
-    let lab = &h.state().lab3d;
-    let snap = lab.snapshot.as_ref().expect("a snapshot");
-    let built = lab.built.as_ref().expect("built");
+    let lane = &three(&h).half.lane;
+    let snap = lane.snapshot.as_ref().expect("a snapshot");
+    let built = built(&h).expect("built");
     assert_eq!(snap.existing.len(), built.node_count);
     assert!(
         snap.existing.iter().all(|&e| e),
         "every node made by the end"
     );
     press(&mut h, Key::Home);
-    let snap = h.state().lab3d.snapshot.as_ref().expect("a snapshot");
+    let snap = three(&h).half.lane.snapshot.as_ref().expect("a snapshot");
     assert!(snap.existing.iter().all(|&e| !e), "none at step 0");
 }
 
 #[test]
 fn a_million_triangles_build_over_many_frames_with_rising_progress() {
     let mut h = lab_3d();
+    // Applied without settling: the harness's `run` refuses a UI that keeps repainting for
+    // more than a few frames, as a build under way does.
     h.state_mut()
-        .lab3d
-        .open(MeshSource::Builtin("lumpy-sphere".to_owned()));
+        .apply(Action3d::OpenMesh(MeshSource::Builtin(
+            "lumpy-sphere".to_owned(),
+        )))
+        .expect("a built-in mesh");
     let mut progress = Vec::new();
     for _ in 0..4_000 {
         h.step();
-        let lab = &h.state().lab3d;
-        if let Some(job) = &lab.job {
-            progress.push(job.fraction());
+        let lab = three(&h);
+        if let Some(fraction) = lab.half.lane.building() {
+            progress.push(fraction);
         }
-        if lab.built.is_some() && !lab.busy() {
+        if built(&h).is_some() && !lab.busy() {
             break;
         }
     }
-    let lab = &h.state().lab3d;
+    let lab = three(&h);
     assert_eq!(
         lab.mesh.as_ref().map(Mesh3d::triangle_count),
         Some(1_000_000)
     );
-    let built = lab.built.as_ref().expect("built");
+    let built = built(&h).expect("built");
     assert!(built.frames > 2, "sliced over frames: {}", built.frames);
     assert!(progress.len() > 2, "progress was shown: {progress:?}");
     assert!(progress.windows(2).all(|w| w[0] <= w[1]), "{progress:?}");
     assert!(built.stats.nodes > 100_000);
     // A structure that is not offered at this size says so, and keeps the mesh.
-    h.state_mut().lab3d.settings.kind = StructureKind::Bsp;
-    settle(&mut h);
-    let lab = &h.state().lab3d;
+    set_kind(&mut h, StructureKind::Bsp);
+    let lab = three(&h);
     let message = lab.message.clone().unwrap_or_default();
     assert!(message.contains("offered up to"), "{message}");
     assert_eq!(
@@ -201,9 +243,7 @@ fn a_million_triangles_build_over_many_frames_with_rising_progress() {
 #[test]
 fn a_broken_mesh_file_is_refused_and_the_open_mesh_stays() {
     let mut h = lab_3d();
-    let before = h
-        .state()
-        .lab3d
+    let before = three(&h)
         .mesh
         .as_ref()
         .map(|m| (m.name.clone(), m.revision));
@@ -217,7 +257,7 @@ fn a_broken_mesh_file_is_refused_and_the_open_mesh_stays() {
     common::drop_file(&mut h, &bad);
     h.run();
     settle(&mut h);
-    let lab = &h.state().lab3d;
+    let lab = three(&h);
     let message = lab.message.clone().unwrap_or_default();
     assert!(message.starts_with("broken.stl"), "{message}");
     assert!(message.contains("stays open"), "{message}");
@@ -231,9 +271,9 @@ fn a_broken_mesh_file_is_refused_and_the_open_mesh_stays() {
     common::drop_file(&mut h, &good);
     h.run();
     until_built(&mut h);
-    let lab = &h.state().lab3d;
+    let lab = three(&h);
     assert_eq!(lab.mesh.as_ref().map(|m| m.name.as_str()), Some("tri.obj"));
-    assert_eq!(lab.built.as_ref().map(|b| b.stats.primitives), Some(1));
+    assert_eq!(built(&h).map(|b| b.stats.primitives), Some(1));
     std::fs::remove_dir_all(&dir).ok();
 }
 
@@ -253,9 +293,9 @@ fn drag_3d(h: &mut Harness<'_, LabApp>, from: egui::Pos2, to: egui::Pos2) {
 
 /// Where a handle is on screen.
 fn handle_on_screen(h: &Harness<'_, LabApp>, which: Handle) -> egui::Pos2 {
-    let lab = &h.state().lab3d;
-    let rect = lab.view_rect;
-    let (_, at) = handles(lab)
+    let lab = three(h);
+    let rect = view_rect(h);
+    let (_, at) = handles(lab, rect)
         .into_iter()
         .find(|(handle, _)| {
             std::mem::discriminant(handle) == std::mem::discriminant(&which)
@@ -276,36 +316,32 @@ fn handle_on_screen(h: &Harness<'_, LabApp>, which: Handle) -> egui::Pos2 {
 fn the_gizmo_moves_the_point_along_an_axis_and_in_the_view_plane() {
     let mut h = lab_3d();
     click(&mut h, "places the point");
-    assert_eq!(h.state().task, Task::Nearest);
-    let before = h.state().lab3d.point.expect("a point is placed on load");
+    assert_eq!(three(&h).half.task, Task::Nearest);
+    let before = three(&h).point.expect("a point is placed on load");
     // The x arrow: dragging along its screen direction moves the point along x only.
     let base = handle_on_screen(&h, Handle::Point);
     let tip = handle_on_screen(&h, Handle::Axis(0, before));
     let along = (tip - base).normalized() * 40.0;
-    let rect = h.state().lab3d.view_rect;
+    let rect = view_rect(&h);
     assert!(
         rect.contains(base) && rect.contains(tip),
         "the gizmo is in view: {base:?} {tip:?} in {rect:?}"
     );
-    let camera = h.state().lab3d.camera;
+    let camera = three(&h).camera;
     drag_3d(&mut h, tip, tip + along);
-    assert_eq!(
-        h.state().lab3d.camera,
-        camera,
-        "a handle drag does not orbit"
-    );
-    let after = h.state().lab3d.point.expect("still placed");
+    assert_eq!(three(&h).camera, camera, "a handle drag does not orbit");
+    let after = three(&h).point.expect("still placed");
     assert!(after.x > before.x + 1e-3, "{before} -> {after}");
     assert_eq!((after.y, after.z), (before.y, before.z));
     // The centre dot: the point moves in the plane facing the camera.
     let depth = |p: bvhlab::glam::Vec3| (p - camera.eye()).dot(camera.basis().forward);
     let centre = handle_on_screen(&h, Handle::Point);
     drag_3d(&mut h, centre, centre + egui::vec2(-30.0, 25.0));
-    let moved = h.state().lab3d.point.expect("still placed");
+    let moved = three(&h).point.expect("still placed");
     assert!((moved - after).length() > 1e-3);
     assert!((depth(moved) - depth(after)).abs() < 1e-3 * depth(after).abs().max(1.0));
     // The answer follows the point, and agrees with brute force.
-    let rec = h.state().lab3d.recorded().expect("recorded");
+    let rec = three(&h).half.lane.recorded().expect("recorded");
     assert_eq!(rec.question.point, Some(moved));
     assert!(rec.agrees());
 }
@@ -316,11 +352,11 @@ fn the_heat_map_fills_in_on_the_cpu_without_a_gpu() {
     // Frame by frame: the map keeps the lab repainting until it is done.
     h.key_press(Key::H);
     h.step();
-    assert!(h.state().lab3d.heat.on, "H shows the heat map");
+    assert!(three(&h).heat.on, "H shows the heat map");
     let mut progress = Vec::new();
     for _ in 0..500 {
         h.step();
-        let heat = h.state().lab3d.heat_report().expect("shown");
+        let heat = heat_report(&h).expect("shown");
         assert_eq!(heat.device, "cpu", "no GPU in this harness");
         progress.push(heat.progress);
         if heat.progress >= 1.0 {
@@ -329,9 +365,9 @@ fn the_heat_map_fills_in_on_the_cpu_without_a_gpu() {
     }
     assert_eq!(progress.last(), Some(&1.0), "{progress:?}");
     assert!(progress.windows(2).all(|w| w[0] <= w[1]));
-    let heat = h.state().lab3d.heat_report().expect("shown");
+    let heat = heat_report(&h).expect("shown");
     assert!(heat.max > 0, "some ray visited a node");
     h.key_press(Key::H);
     h.step();
-    assert!(h.state().lab3d.heat_report().is_none(), "H hides it again");
+    assert!(heat_report(&h).is_none(), "H hides it again");
 }

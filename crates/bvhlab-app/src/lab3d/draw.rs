@@ -1,7 +1,8 @@
 //! What the 3D view shows, as a list of segments, polygons, markers and highlighted
 //! triangles: the structure's level, the nodes the query visited, culled and pruned (or a
 //! build's nodes so far), the ray with its hit point and normal, the query point with its
-//! closest points, and the gizmo. Read from the playback snapshot, as the 2D canvas is.
+//! closest points, the node hovered (in the tree diagram or on the mesh) with its triangles,
+//! and the gizmo. Read from the playback snapshot, as the 2D canvas is.
 
 use bvhlab::glam::Vec3;
 use bvhlab::structure::PrimitiveResult;
@@ -82,8 +83,18 @@ impl Draw3d {
     }
 }
 
-/// The draw list of lane `index` (1: the comparison) in a view of `rect`.
-pub fn draw(lab: &Lab3d, index: usize, rect: egui::Rect, gizmo_shown: bool) -> Draw3d {
+/// The most triangles of a hovered node's subtree lit.
+const HOVER_TRIANGLE_CAP: usize = 200_000;
+
+/// The draw list of lane `index` (1: the comparison) in a view of `rect`, with node
+/// `hovered` of this lane (in the tree diagram or on the mesh) lit.
+pub fn draw(
+    lab: &Lab3d,
+    index: usize,
+    rect: egui::Rect,
+    gizmo_shown: bool,
+    hovered: Option<NodeId>,
+) -> Draw3d {
     let mut d = Draw3d::default();
     let task = lab.half.task;
     let lane = lab.half.lane_at(index);
@@ -106,6 +117,9 @@ pub fn draw(lab: &Lab3d, index: usize, rect: egui::Rect, gizmo_shown: bool) -> D
     }
     if !building {
         query_shapes(lab, lane, task, size, &mut d);
+    }
+    if let Some(node) = hovered {
+        hovered_node(built, node, &mut d);
     }
     if gizmo_shown {
         gizmo(lab, rect, &mut d);
@@ -224,6 +238,30 @@ fn build_state(lab: &Lab3d, built: &Built3d, snap: &Snapshot<Vec3>, d: &mut Draw
                     };
                     d.highlights.push((prim, rgba(color, 1.0)));
                 }
+            }
+        } else {
+            stack.extend(children);
+        }
+    }
+}
+
+/// The node hovered: its volume or cell on top of the mesh (so it shows inside an opaque
+/// one), and the triangles below it, over the other highlights.
+fn hovered_node(built: &Built3d, node: NodeId, d: &mut Draw3d) {
+    let Some(view) = built.node(node) else { return };
+    let color = rgba(colors::SELECTED, 1.0);
+    wire::shape(&view.shape, color, 2.5, &mut d.overlay);
+    let mut stack = vec![node];
+    let mut count = 0;
+    while let Some(id) = stack.pop() {
+        let children = built.children(id);
+        if children.is_empty() {
+            for prim in built.leaf_primitives(id) {
+                if count >= HOVER_TRIANGLE_CAP {
+                    return;
+                }
+                count += 1;
+                d.highlights.push((prim, color));
             }
         } else {
             stack.extend(children);

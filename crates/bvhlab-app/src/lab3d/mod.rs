@@ -2,7 +2,8 @@
 //! ([`crate::render3d`]) through an `egui_wgpu` paint callback, with the heat map, a build's
 //! progress and a legend on top. Pointer input (orbit, pan, zoom, click to cast, the gizmo)
 //! becomes actions ([`input`]). Comparing two structures shows two views side by side with one
-//! camera.
+//! camera. Hovering the mesh finds the leaf holding the triangle under the pointer, which
+//! the tree diagram shows; a node hovered there is lit here.
 //!
 //! Mirrors [`crate::lab2d`]: `mod.rs` the widget, `input.rs` the pointer, `draw.rs` what is
 //! drawn (the playback's state included); and `nodes.rs` (a structure's nodes at any size),
@@ -17,6 +18,7 @@ pub mod wire;
 
 use std::sync::Arc;
 
+use bvhlab::NodeId;
 use bvhlab::glam::Vec3;
 use egui::{Align2, Color32, FontId, Sense};
 
@@ -38,6 +40,9 @@ pub struct ViewState {
     pub rect: egui::Rect,
     /// The traversal-cost heat map: its tracing and images.
     pub heat: heat::HeatMap,
+    /// What each half of the view drew in the last frame (one list, or two when
+    /// comparing).
+    pub drawn: Vec<Draw3d>,
     /// The mesh's triangles in the GPU's layout, made once per mesh (shared with the paint
     /// callback).
     mesh_gpu: Option<Arc<MeshData>>,
@@ -49,6 +54,7 @@ impl Default for ViewState {
             dragging: None,
             rect: egui::Rect::NOTHING,
             heat: heat::HeatMap::default(),
+            drawn: Vec::new(),
             mesh_gpu: None,
         }
     }
@@ -87,10 +93,24 @@ pub fn view(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
     }
     // Input goes through the first half's projection (both show the same camera).
     input::handle_input(cx, &response, halves[0]);
+    if cx.ui.link_hover
+        && cx.ui.view3d.dragging.is_none()
+        && !response.dragged()
+        && let Some(p) = response.hover_pos()
+        && let Some(i) = halves.iter().position(|r| r.contains(p))
+    {
+        cx.ui.hovered = leaf_under(lab, i, halves[i], p).map(|n| (i, n));
+    }
     let mesh = cx.ui.view3d.mesh_gpu(lab);
     let painter = ui.painter_at(rect);
+    let mut drawn_lists = Vec::with_capacity(halves.len());
     for (i, half) in halves.iter().enumerate() {
-        let drawn = draw::draw(lab, i, *half, i == 0);
+        let hovered = cx
+            .ui
+            .hovered
+            .filter(|(lane, _)| *lane == i)
+            .map(|(_, node)| node);
+        let drawn = draw::draw(lab, i, *half, i == 0, hovered);
         if cx.ui.render_state.is_some() {
             let id = ui.make_persistent_id(("3d view", i));
             gpu::paint_3d(ui, *half, id, frame(lab, mesh.clone(), &drawn));
@@ -142,7 +162,9 @@ pub fn view(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
                 colors::QUERY,
             );
         }
+        drawn_lists.push(drawn);
     }
+    cx.ui.view3d.drawn = drawn_lists;
     if lab.half.compare.is_some() {
         painter.vline(
             halves[0].right() + 2.0,
@@ -151,6 +173,18 @@ pub fn view(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
         );
     }
     legend(&painter, rect);
+}
+
+/// The leaf of lane `index`'s structure holding the triangle under `pointer` in the view of
+/// `rect` (the first the camera's ray through it hits), when the structure is listed.
+fn leaf_under(lab: &Lab3d, index: usize, rect: egui::Rect, pointer: egui::Pos2) -> Option<NodeId> {
+    let built = lab.half.lane_at(index).current(lab.revision())?;
+    let pixel = bvhlab::glam::Vec2::new(pointer.x - rect.min.x, pointer.y - rect.min.y);
+    let size = bvhlab::glam::Vec2::new(rect.width(), rect.height());
+    let ray = lab.camera.ray_through(pixel, size)?;
+    let hit = built.built.ray_first_hit(&ray, &mut ()).answer?;
+    let leaf = (*built.leaf_of.get(hit.prim)?)?;
+    Some(NodeId(leaf))
 }
 
 /// The mesh and the draw list as the renderer's frame.

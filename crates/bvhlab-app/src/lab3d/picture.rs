@@ -2,7 +2,8 @@
 //! camera, shaded by how they face the light and drawn back to front (the painter's
 //! algorithm), then the structure's lines, the ray, the gizmo and the markers of
 //! [`Draw3d`] on top, as egui shapes in screen space. Drawn from the same state as the view,
-//! untessellated, so slides get sharp lines.
+//! untessellated, so slides get sharp lines. What reaches behind the eye is cut at the near
+//! plane, as the GPU cuts it: a ray cast from an earlier eye, a camera inside the mesh.
 
 use bvhlab::glam::{Vec2, Vec3};
 use egui::epaint::{Mesh, Vertex, WHITE_UV};
@@ -25,7 +26,11 @@ pub fn picture(lab: &Lab3d, rect: Rect) -> Vec<Shape> {
         shapes.push(Shape::rect_filled(*half, 0.0, super::BACKGROUND));
         let projector = Projector::new(&lab.camera, *half);
         mesh(lab, &projector, &mut shapes);
-        overlay(&draw::draw(lab, i, *half, i == 0), &projector, &mut shapes);
+        overlay(
+            &draw::draw(lab, i, *half, i == 0, None),
+            &projector,
+            &mut shapes,
+        );
     }
     shapes
 }
@@ -36,6 +41,8 @@ struct Projector {
     rect: Rect,
     eye: Vec3,
     forward: Vec3,
+    /// The near plane's distance: what is nearer is not drawn.
+    near: f32,
 }
 
 impl Projector {
@@ -45,6 +52,40 @@ impl Projector {
             rect,
             eye: camera.eye(),
             forward: camera.basis().forward,
+            near: camera.clip_range().0,
+        }
+    }
+
+    /// The part of the closed polygon `corners` in front of the near plane (Sutherland and
+    /// Hodgman's clipping against one plane); empty when none of it is.
+    fn in_front(&self, corners: &[Vec3]) -> Vec<Vec3> {
+        let depths: Vec<f32> = corners.iter().map(|&p| self.depth(p) - self.near).collect();
+        if depths.iter().all(|&d| d >= 0.0) {
+            return corners.to_vec();
+        }
+        let mut out = Vec::with_capacity(corners.len() + 1);
+        for i in 0..corners.len() {
+            let j = (i + 1) % corners.len();
+            let (p, q, dp, dq) = (corners[i], corners[j], depths[i], depths[j]);
+            if dp >= 0.0 {
+                out.push(p);
+            }
+            if (dp >= 0.0) != (dq >= 0.0) {
+                out.push(p + (q - p) * (dp / (dp - dq)));
+            }
+        }
+        out
+    }
+
+    /// The part of the segment `a`–`b` in front of the near plane, if any.
+    fn segment_in_front(&self, a: Vec3, b: Vec3) -> Option<(Vec3, Vec3)> {
+        let (da, db) = (self.depth(a) - self.near, self.depth(b) - self.near);
+        let cut = |p: Vec3, q: Vec3, dp: f32, dq: f32| p + (q - p) * (dp / (dp - dq));
+        match (da >= 0.0, db >= 0.0) {
+            (true, true) => Some((a, b)),
+            (false, false) => None,
+            (true, false) => Some((a, cut(a, b, da, db))),
+            (false, true) => Some((cut(a, b, da, db), b)),
         }
     }
 
@@ -70,16 +111,28 @@ fn mesh(lab: &Lab3d, projector: &Projector, shapes: &mut Vec<Shape>) {
     }
     let light = (projector.forward * -1.0 + Vec3::Y * 0.5).normalize_or_zero();
     let alpha = if lab.display.xray { 0.35 } else { 1.0 };
-    let mut placed: Vec<(f32, [Pos2; 3], f32)> = triangles
-        .iter()
-        .filter_map(|t| {
-            let corners = [projector.at(t.a)?, projector.at(t.b)?, projector.at(t.c)?];
-            let centre = (t.a + t.b + t.c) / 3.0;
-            let normal = (t.b - t.a).cross(t.c - t.a).normalize_or_zero();
-            let facing = normal.dot(light).abs();
-            Some((projector.depth(centre), corners, facing))
-        })
-        .collect();
+    let mut placed: Vec<(f32, [Pos2; 3], f32)> = Vec::with_capacity(triangles.len());
+    for t in triangles {
+        // A triangle reaching behind the eye is cut to a polygon, drawn as a fan.
+        let corners = projector.in_front(&[t.a, t.b, t.c]);
+        let Some(corners) = corners
+            .iter()
+            .map(|&p| projector.at(p))
+            .collect::<Option<Vec<Pos2>>>()
+        else {
+            continue;
+        };
+        let centre = (t.a + t.b + t.c) / 3.0;
+        let normal = (t.b - t.a).cross(t.c - t.a).normalize_or_zero();
+        let facing = normal.dot(light).abs();
+        for i in 1..corners.len().saturating_sub(1) {
+            placed.push((
+                projector.depth(centre),
+                [corners[0], corners[i], corners[i + 1]],
+                facing,
+            ));
+        }
+    }
     placed.sort_by(|a, b| b.0.total_cmp(&a.0));
     let base = colors::SCENE;
     let mut out = Mesh::default();
@@ -115,8 +168,12 @@ fn overlay(drawn: &Draw3d, projector: &Projector, shapes: &mut Vec<Shape>) {
         )
     };
     for polygon in &drawn.polygons {
-        let points: Option<Vec<Pos2>> = polygon.corners.iter().map(|&p| projector.at(p)).collect();
-        if let Some(points) = points {
+        let points: Option<Vec<Pos2>> = projector
+            .in_front(&polygon.corners)
+            .iter()
+            .map(|&p| projector.at(p))
+            .collect();
+        if let Some(points) = points.filter(|p| p.len() >= 3) {
             shapes.push(Shape::convex_polygon(
                 points,
                 color(polygon.color),
@@ -125,7 +182,10 @@ fn overlay(drawn: &Draw3d, projector: &Projector, shapes: &mut Vec<Shape>) {
         }
     }
     for segment in drawn.lines.iter().chain(&drawn.overlay) {
-        if let (Some(a), Some(b)) = (projector.at(segment.a), projector.at(segment.b)) {
+        let Some((a, b)) = projector.segment_in_front(segment.a, segment.b) else {
+            continue;
+        };
+        if let (Some(a), Some(b)) = (projector.at(a), projector.at(b)) {
             shapes.push(Shape::line_segment(
                 [a, b],
                 Stroke::new(segment.width, color(segment.color)),
