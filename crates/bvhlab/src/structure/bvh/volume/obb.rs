@@ -1,10 +1,10 @@
 //! Oriented boxes as node volumes: the OBB tree (Gottschalk, Lin and Manocha, "`OBBTree`: A
 //! Hierarchical Structure for Rapid Interference Detection", SIGGRAPH 1996).
 
-use super::BvhOptions;
-use super::volume::{GROW, HUGE, NodeVolume, PreparedRange, PreparedRay, growth, magnitude};
+use super::{GROW, HUGE, NodeVolume, PreparedRange, PreparedRay, growth, magnitude};
 use crate::Vector;
 use crate::structure::RangeShape;
+use crate::structure::bvh::BvhOptions;
 use crate::volume::{Aabb, BoundingVolume, Obb};
 
 impl<V: Vector> NodeVolume for Obb<V> {

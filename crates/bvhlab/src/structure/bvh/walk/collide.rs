@@ -6,9 +6,9 @@
 //! leaves meet and their primitives are tested pair by pair (Gottschalk, Lin and Manocha,
 //! "`OBBTree`", SIGGRAPH 1996, §5: "descend the larger").
 
-use super::Bvh;
-use super::volume::NodeVolume;
 use crate::Primitive;
+use crate::structure::bvh::Bvh;
+use crate::structure::bvh::volume::NodeVolume;
 use crate::structure::{Event, NodeId, Observer, QueryCost, Traced};
 
 impl<B, P> Bvh<B, P>
@@ -23,7 +23,7 @@ where
     /// for two overlapping leaves a `PairTest` per primitive pair. A node pair's children
     /// pairs are tested first child first. The cost counts node pairs tested as bound tests,
     /// overlapping node pairs as nodes visited, and primitive pairs as primitive tests.
-    pub(super) fn collide_impl<O: Observer<P::Point>>(
+    pub(in crate::structure::bvh) fn collide_impl<O: Observer<P::Point>>(
         &self,
         other: &Self,
         observer: &mut O,

@@ -1,9 +1,9 @@
 //! Spheres as node volumes: the sphere tree (lecture §3, "Sphere trees and AABB trees").
 
-use super::volume::{GROW, HUGE, NodeVolume, PreparedRange, PreparedRay, growth, magnitude};
-use super::{BvhOptions, SphereFit};
+use super::{GROW, HUGE, NodeVolume, PreparedRange, PreparedRay, growth, magnitude};
 use crate::Vector;
 use crate::structure::RangeShape;
+use crate::structure::bvh::{BvhOptions, SphereFit};
 use crate::volume::{Aabb, BoundingVolume, Sphere};
 
 impl<V: Vector> NodeVolume for Sphere<V> {

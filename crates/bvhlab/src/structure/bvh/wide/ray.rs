@@ -13,14 +13,14 @@
 //! `(t, index)` over every primitive not pruned, whatever the order they are met in
 //! ([`HitTracker`]).
 //!
-//! [`NodeVolume::ray_entry`]: super::NodeVolume::ray_entry
+//! [`NodeVolume::ray_entry`]: crate::structure::bvh::NodeVolume::ray_entry
 
-use super::MAX_DEPTH;
+use crate::structure::bvh::MAX_DEPTH;
 use glam::Vec4;
 
-use super::volume::{GROW, PreparedRay};
-use super::wide_stack::{Lane, MIDDLE_DEPTH, SHALLOW_DEPTH, capacity, visit_nearest};
-use super::wide_tree::{Bvh4, Bvh4Node, WIDTH};
+use super::layout::{Bvh4, Bvh4Node, WIDTH};
+use super::stack::{Lane, MIDDLE_DEPTH, SHALLOW_DEPTH, capacity, visit_nearest};
+use crate::structure::bvh::volume::{GROW, PreparedRay};
 use crate::structure::{Hit, HitTracker};
 use crate::{Primitive, Ray, Vector};
 

@@ -4,12 +4,14 @@
 //! The stack lives in a fixed-size array on the call stack, which is zeroed on every query:
 //! its size is chosen per tree from the wide tree's depth ([`SHALLOW_DEPTH`] and
 //! [`MIDDLE_DEPTH`] levels fit in shorter arrays, deeper trees get one for
-//! [`MAX_DEPTH`](super::MAX_DEPTH)), since the longest (2.3 KB) would be zeroed on every ray,
+//! [`MAX_DEPTH`]), since the longest (2.3 KB) would be zeroed on every ray,
 //! a coherent one taking only about 250 cycles. The middle size is for the largest meshes:
 //! the 2M-triangle sphere of the peer comparison has 17 wide levels, and zeroing the longest
 //! stack cost its primary rays 5% and its diffuse rays 5-8% (measured against this tier).
+//!
+//! [`MAX_DEPTH`]: crate::structure::bvh::MAX_DEPTH
 
-use super::wide_tree::{Bvh4Node, WIDTH};
+use super::layout::{Bvh4Node, WIDTH};
 
 /// Wide trees at most this deep (in wide levels) take the walks with the short stack.
 pub(super) const SHALLOW_DEPTH: usize = 16;

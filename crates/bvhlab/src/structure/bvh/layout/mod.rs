@@ -1,4 +1,8 @@
 //! The layout: a flat, depth-first array of binary nodes, and the primitives in leaf order.
+//!
+//! Beside it: `stats.rs`, the numbers that compare one tree with another.
+
+mod stats;
 
 use super::BvhOptions;
 use crate::structure::NodeId;

@@ -24,16 +24,21 @@
 
 mod fast;
 mod fast_bins;
+pub(super) mod job;
+mod median;
 mod node_stages;
+pub(super) mod options;
+mod sah;
+pub(super) mod split_log;
 
 pub(super) use fast::{build_sah_box_parts, build_sah_boxes};
 
-use super::build_job::{BuildPhase, BuildProgress};
-use super::build_log::SplitRecord;
-use super::fit_sliced::SlicedFit;
-use super::split_sah::{SahBinning, SahCurve, SahScratch};
-use super::tree::{BvhNode, is_indexable};
+use self::job::{BuildPhase, BuildProgress};
+use self::sah::{SahBinning, SahCurve, SahScratch};
+use self::split_log::SplitRecord;
+use super::layout::{BvhNode, is_indexable};
 use super::volume::NodeVolume;
+use super::volume::fit_sliced::SlicedFit;
 use super::{Bvh, BvhOptions};
 use crate::structure::Observer;
 use crate::volume::Aabb;

@@ -11,11 +11,13 @@
 //!
 //! Areas are summed in `f64`: with coordinates near 1e20 a surface area overflows `f32`.
 
-use super::build::BuildPrim;
+use super::BuildPrim;
 use crate::Vector;
 use crate::volume::{Aabb, BoundingVolume};
 
-/// The most bins per axis ([`BvhOptions::bins`](super::BvhOptions::bins) is clamped to it).
+/// The most bins per axis ([`BvhOptions::bins`] is clamped to it).
+///
+/// [`BvhOptions::bins`]: crate::structure::bvh::BvhOptions::bins
 pub(super) const MAX_BINS: usize = 64;
 
 /// The cheapest plane of the best axis; its cost curve is in the [`SahScratch`].

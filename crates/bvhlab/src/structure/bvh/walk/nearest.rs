@@ -7,9 +7,9 @@
 //! depth-first with the same ordering). A node at exactly the bound is still visited: a
 //! primitive there ties, and ties go to the lower index.
 
-use super::Bvh;
 use super::stack::{Entry, Stack};
-use super::volume::{GROW, NodeVolume, query_slack};
+use crate::structure::bvh::Bvh;
+use crate::structure::bvh::volume::{GROW, NodeVolume, query_slack};
 use crate::structure::{
     Event, Nearest, NearestSet, NodeId, Observer, PrimitiveResult, PruneReason, QueryCost, Traced,
 };
@@ -35,7 +35,7 @@ where
     /// meanwhile dropped below its distance, else `EnterNode`, then at a leaf a
     /// `PrimitiveTest` with each primitive's distance and `NewBest` when it enters the k
     /// best.
-    pub(super) fn k_nearest_impl<O: Observer<P::Point>>(
+    pub(in crate::structure::bvh) fn k_nearest_impl<O: Observer<P::Point>>(
         &self,
         point: P::Point,
         k: usize,

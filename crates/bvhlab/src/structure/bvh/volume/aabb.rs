@@ -3,9 +3,9 @@
 #[cfg(any(target_arch = "wasm32", test))]
 use glam::Vec4;
 
-use super::BvhOptions;
-use super::volume::{GROW, NodeVolume, PreparedRange, PreparedRay, SLACK, magnitude};
+use super::{GROW, NodeVolume, PreparedRange, PreparedRay, SLACK, magnitude};
 use crate::structure::RangeShape;
+use crate::structure::bvh::BvhOptions;
 use crate::volume::{Aabb, BoundingVolume};
 use crate::{Primitive, Vector};
 
@@ -14,7 +14,7 @@ impl<V: Vector> NodeVolume for Aabb<V> {
     const NEEDS_VERTICES: bool = false;
 
     /// The union of the primitives' boxes, grown on every side by [`SLACK`] of its largest
-    /// coordinate (see the [module documentation](super::volume)). Growing by the box's own
+    /// coordinate (see the [module documentation](super)). Growing by the box's own
     /// magnitude keeps children inside their parents: a parent's coordinates are at least
     /// as large.
     fn fit(bounds: &Aabb<V>, _vertices: &[V], _options: &BvhOptions) -> Self {

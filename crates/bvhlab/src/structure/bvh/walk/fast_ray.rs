@@ -1,7 +1,7 @@
-//! The unobserved ray first hit: the same walk as `traverse_ray`, without the bookkeeping
+//! The unobserved ray first hit: the same walk as `ray.rs`, without the bookkeeping
 //! that only the lab needs.
 //!
-//! The observed walk (`traverse_ray`) keeps, per waiting node, its depth for `EnterNode`,
+//! The observed walk (`ray.rs`) keeps, per waiting node, its depth for `EnterNode`,
 //! counts every test for [`QueryCost`](crate::structure::QueryCost) and pushes both
 //! children before popping the nearer again, so that every step can be reported in the order
 //! the lab plays it back. A caller that only wants the answer pays for none of that here:
@@ -15,8 +15,8 @@
 //! hit is the least `(t, index)` over every primitive not pruned, whatever the order they
 //! are met in ([`HitTracker`]).
 
-use super::volume::{GROW, NodeVolume, PreparedRay};
-use super::{Bvh, MAX_DEPTH};
+use crate::structure::bvh::volume::{GROW, NodeVolume, PreparedRay};
+use crate::structure::bvh::{Bvh, MAX_DEPTH};
 use crate::structure::{Hit, HitTracker};
 use crate::{Primitive, Ray};
 
@@ -30,7 +30,11 @@ where
 {
     /// The first hit with `0 <= t <= t_max` (none for a NaN `t_max`): what
     /// `first_hit(ray, t_max, &mut ())` answers, found faster.
-    pub(super) fn first_hit_fast(&self, ray: &Ray<P::Point>, t_max: f32) -> Option<Hit> {
+    pub(in crate::structure::bvh) fn first_hit_fast(
+        &self,
+        ray: &Ray<P::Point>,
+        t_max: f32,
+    ) -> Option<Hit> {
         if self.nodes.is_empty() || t_max.is_nan() {
             return None;
         }

@@ -10,14 +10,16 @@
 //! tests at once share two cache lines instead of lying in two nodes each.
 //!
 //! The collapse keeps the binary tree's boxes (each fitted with its slack, so every
-//! conservative argument of [`volume`](super::volume) still holds) and its leaves; it only
+//! conservative argument of [`volume`] still holds) and its leaves; it only
 //! removes inner levels: a wide node's lanes are the binary node's children, and while there
 //! are fewer than four, the inner lane with the largest surface area is replaced by its two
 //! children (the greedy rule of Wald et al.), which opens the boxes most rays enter.
+//!
+//! [`volume`]: crate::structure::bvh::volume
 
-use super::build::build_sah_box_parts;
-use super::tree::BvhNode;
-use super::{Bvh, BvhOptions, SplitMethod};
+use crate::structure::bvh::build::build_sah_box_parts;
+use crate::structure::bvh::layout::BvhNode;
+use crate::structure::bvh::{Bvh, BvhOptions, SplitMethod};
 use crate::volume::{Aabb, BoundingVolume};
 use crate::{Primitive, Vector};
 
@@ -86,7 +88,7 @@ impl Bvh4Node {
     }
 }
 
-/// A 4-wide AABB tree collapsed from a built [`AabbTree`](super::AabbTree), answering
+/// A 4-wide AABB tree collapsed from a built [`AabbTree`], answering
 /// [`ray_first_hit`](Self::ray_first_hit) and [`closest_point`](Self::closest_point) exactly
 /// as the binary tree (and brute force) does, bit for bit, but faster. It holds its own copy
 /// of the primitives in leaf order, so the binary tree can be dropped.
@@ -109,6 +111,8 @@ impl Bvh4Node {
 /// assert_eq!(wide.ray_first_hit(&down, f32::INFINITY).map(|h| h.prim), Some(9));
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
+///
+/// [`AabbTree`]: crate::structure::bvh::AabbTree
 #[derive(Clone, Debug, PartialEq)]
 pub struct Bvh4<P: Primitive> {
     /// Wide nodes; the root is node 0 (when any primitive is indexed). Each node's inner

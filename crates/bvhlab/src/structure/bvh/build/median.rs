@@ -1,7 +1,7 @@
 //! The lecture's splits: along the longest axis of the centres' box, at its middle (spatial
 //! median) or at the median centre (object median).
 
-use super::build::{BuildPrim, Split};
+use super::{BuildPrim, Split};
 use crate::Vector;
 use crate::volume::Aabb;
 

@@ -1,4 +1,4 @@
-//! Node fits in resumable passes, for a build run in slices ([`BvhBuild`](super::BvhBuild)).
+//! Node fits in resumable passes, for a build run in slices ([`BvhBuild`]).
 //!
 //! An OBB-tree node's PCA box and a sphere-tree node's Ritter sphere read every vertex below
 //! the node several times: the mean, the covariance and two projections for the box; two
@@ -6,28 +6,32 @@
 //! of a million triangles (3M vertices) the PCA box alone takes about 65 ms in the test
 //! profile, too long for one frame of a page that must stay responsive. Here each pass is the
 //! same fold as in [`Obb::pca_fit`] and [`Sphere::ritter_fit`] followed by the node volume's
-//! own growth and checks (`node_obb.rs`, `node_sphere.rs`), over the same points in the same
+//! own growth and checks (`volume/obb.rs`, `volume/sphere.rs`), over the same points in the same
 //! order and the same precision, only stopped and resumed between chunks, so the volume is
 //! the same to the bit. The tests compare both, volume by volume and tree by tree.
 //!
 //! Welzl's sphere ([`SphereFit::Welzl`]) is not split: its move-to-front recursion restarts
 //! on every point outside the current ball, so it is fitted in one go.
+//!
+//! [`BvhBuild`]: crate::structure::bvh::BvhBuild
 
+mod obb;
+mod sphere;
 #[cfg(test)]
 mod tests;
 
 use std::any::{Any, TypeId};
 
-use super::fit_sliced_obb::PcaBoxPasses;
-use super::fit_sliced_sphere::RitterPasses;
-use super::volume::NodeVolume;
-use super::{BvhOptions, SphereFit};
+use self::obb::PcaBoxPasses;
+use self::sphere::RitterPasses;
+use super::NodeVolume;
 use crate::Vector;
+use crate::structure::bvh::{BvhOptions, SphereFit};
 use crate::volume::{Aabb, Obb, Sphere};
 
 /// A node fit in progress, one pass at a time.
 #[derive(Clone, Debug)]
-pub(super) enum SlicedFit<V: Vector> {
+pub(in crate::structure::bvh) enum SlicedFit<V: Vector> {
     /// The PCA box of an OBB-tree node.
     PcaBox(PcaBoxPasses<V>),
     /// Ritter's sphere of a sphere-tree node.

@@ -3,10 +3,10 @@
 //! Depth first: a node whose volume misses the region is pruned with everything below it;
 //! leaves test their primitives exactly.
 
-use super::Bvh;
 use super::stack::{Entry, Stack};
-use super::volume::{NodeVolume, PreparedRange};
 use crate::Primitive;
+use crate::structure::bvh::Bvh;
+use crate::structure::bvh::volume::{NodeVolume, PreparedRange};
 use crate::structure::{
     Event, NodeId, Observer, PrimitiveResult, PruneReason, QueryCost, RangeShape, Traced,
 };
@@ -22,7 +22,7 @@ where
     /// `Prune(NoOverlap)` when the volume misses the region, else `ChildQueued` (key 0, first
     /// child first); `EnterNode` when a node is popped, then at a leaf a `PrimitiveTest`
     /// (`Overlap` or `NoOverlap`) per primitive.
-    pub(super) fn range_impl<O: Observer<P::Point>>(
+    pub(in crate::structure::bvh) fn range_impl<O: Observer<P::Point>>(
         &self,
         shape: &RangeShape<P::Point>,
         observer: &mut O,

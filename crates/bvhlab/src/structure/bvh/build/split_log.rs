@@ -1,8 +1,8 @@
 //! What the builder decided at each node, kept for the lab to plot: the SAH cost of every
 //! candidate plane, the plane it chose, and the cost of not splitting at all.
 
-use super::SplitMethod;
 use crate::structure::NodeId;
+use crate::structure::bvh::SplitMethod;
 
 /// One node's split decision.
 ///

@@ -1,6 +1,6 @@
 //! The sliced fits give the one-go fits' volumes to the bit, whatever the chunk size: on
 //! random points, duplicates, a single point, points on a line or in a plane, and points
-//! beyond [`HUGE`](super::super::volume::HUGE), in 2D and 3D.
+//! beyond [`HUGE`](crate::structure::bvh::volume::HUGE), in 2D and 3D.
 
 use glam::{Vec2, Vec3};
 use rand::{RngExt, SeedableRng};

@@ -1,4 +1,4 @@
-//! The OBB-tree node fit ([`Obb::pca_fit`], then the growth and checks of `node_obb.rs`) in
+//! The OBB-tree node fit ([`Obb::pca_fit`], then the growth and checks of `volume/obb.rs`) in
 //! four resumable passes over the node's vertices: the mean, the covariance (whose
 //! eigenvectors are the box's axes), the extremes along the axes (which place the centre),
 //! and the half extents measured as `contains` measures them. A fifth pass checks
@@ -9,15 +9,15 @@
 
 use glam::{DVec2, DVec3, Vec2, Vec3};
 
-use super::fit_sliced::Cursor;
-use super::volume::{HUGE, growth, magnitude};
+use super::Cursor;
 use crate::Vector;
 use crate::math::eigen::symmetric_eigen;
+use crate::structure::bvh::volume::{HUGE, growth, magnitude};
 use crate::volume::{Aabb, BoundingVolume, Obb};
 
 /// The PCA box of a node's vertices, a chunk of points at a time.
 #[derive(Clone, Debug)]
-pub(super) struct PcaBoxPasses<V: Vector> {
+pub(in crate::structure::bvh) struct PcaBoxPasses<V: Vector> {
     /// Whether the node's coordinates exceed [`HUGE`], so that the box must be checked
     /// against every vertex.
     huge: bool,

@@ -1,5 +1,5 @@
 //! The sphere-tree node fit ([`Sphere::ritter_fit`], then the growth and checks of
-//! `node_sphere.rs`) in four resumable passes over the node's vertices: the point farthest
+//! `volume/sphere.rs`) in four resumable passes over the node's vertices: the point farthest
 //! from the first, the point farthest from that one (the two span the first sphere), the
 //! pass that grows the sphere over each point left outside, and the radius measured as
 //! `contains` measures it. A fifth pass checks containment for coordinates beyond [`HUGE`],
@@ -8,15 +8,15 @@
 //! Every fold is the one-go fit's, in the same order and precision, so the sphere is the same
 //! to the bit. Ritter, "An Efficient Bounding Sphere", Graphics Gems, 1990.
 
-use super::fit_sliced::Cursor;
-use super::volume::{HUGE, growth, magnitude};
+use super::Cursor;
 use crate::Vector;
+use crate::structure::bvh::volume::{HUGE, growth, magnitude};
 use crate::volume::sphere::round_up;
 use crate::volume::{Aabb, BoundingVolume, Sphere};
 
 /// Ritter's sphere of a node's vertices, a chunk of points at a time.
 #[derive(Clone, Debug)]
-pub(super) struct RitterPasses<V: Vector> {
+pub(in crate::structure::bvh) struct RitterPasses<V: Vector> {
     /// Whether the node's coordinates exceed [`HUGE`], so that the sphere must be checked
     /// against every vertex.
     huge: bool,

@@ -6,9 +6,9 @@
 //! hit so far (for any-hit and all-hits queries: beyond `t_max`). The three queries share
 //! this walk and differ only in what a leaf does with its primitives ([`RayVisitor`]).
 
-use super::Bvh;
 use super::stack::{Entry, Stack};
-use super::volume::{GROW, NodeVolume, PreparedRay};
+use crate::structure::bvh::Bvh;
+use crate::structure::bvh::volume::{GROW, NodeVolume, PreparedRay};
 use crate::structure::query::by_t_then_prim;
 use crate::structure::{
     Event, Hit, HitTracker, NodeId, Observer, PrimitiveResult, PruneReason, QueryCost, Traced,
@@ -155,7 +155,7 @@ where
     P: Primitive,
 {
     /// The first hit with `0 <= t <= t_max` (none for a NaN `t_max`).
-    pub(super) fn first_hit<O: Observer<P::Point>>(
+    pub(in crate::structure::bvh) fn first_hit<O: Observer<P::Point>>(
         &self,
         ray: &Ray<P::Point>,
         t_max: f32,
@@ -175,7 +175,7 @@ where
     }
 
     /// Some hit with `0 <= t <= t_max`: the first one met.
-    pub(super) fn any_hit<O: Observer<P::Point>>(
+    pub(in crate::structure::bvh) fn any_hit<O: Observer<P::Point>>(
         &self,
         ray: &Ray<P::Point>,
         t_max: f32,
@@ -190,7 +190,7 @@ where
     }
 
     /// Every hit with `0 <= t <= t_max`, sorted by `t`, then index.
-    pub(super) fn all_hits<O: Observer<P::Point>>(
+    pub(in crate::structure::bvh) fn all_hits<O: Observer<P::Point>>(
         &self,
         ray: &Ray<P::Point>,
         t_max: f32,

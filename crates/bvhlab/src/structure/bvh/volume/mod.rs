@@ -15,6 +15,11 @@
 //! of a node's entry `t` or distance against a limit allows [`SLACK`] relative error (as
 //! Ize, "Robust BVH Ray Traversal", JCGT 2013, does for the slab test's far end).
 
+mod aabb;
+pub(super) mod fit_sliced;
+mod obb;
+mod sphere;
+
 #[cfg(any(target_arch = "wasm32", test))]
 use glam::{BVec4A, Vec4};
 
@@ -42,8 +47,8 @@ pub const GROW: f32 = 1.0 + SLACK;
 
 /// A node volume: a [`BoundingVolume`] that can be fitted to a node's primitives and tested
 /// conservatively against the queries' prepared forms. Implemented for
-/// [`Aabb`] (`node_aabb.rs`), [`Sphere`](crate::Sphere) (`node_sphere.rs`) and [`Obb`]
-/// (`node_obb.rs`).
+/// [`Aabb`] (`aabb.rs`), [`Sphere`](crate::Sphere) (`sphere.rs`) and [`Obb`] (`obb.rs`), in
+/// this folder.
 pub trait NodeVolume: BoundingVolume + Copy + Send + Sync + 'static {
     /// A short name for labels and messages: "AABB", "sphere", "OBB".
     const NAME: &'static str;

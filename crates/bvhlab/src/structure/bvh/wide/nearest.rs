@@ -2,7 +2,7 @@
 //! the boxes that may hold something nearer than the best, nearest first.
 //!
 //! The four-lane bound is the box's
-//! [`distance_bound_squared`](super::NodeVolume::distance_bound_squared) over fixed-size
+//! [`distance_bound_squared`] over fixed-size
 //! arrays, one lane per child (clamp the point into the box, sum the squared offsets in axis
 //! order), which the compiler turns into vector instructions.
 //!
@@ -19,13 +19,15 @@
 //! squared bound exceeds the square of the best distance times [`GROW`] plus the query's
 //! slack, with room for rounding), and the best is the least `(distance, index)` over every
 //! primitive not pruned, whatever the order they are met in.
+//!
+//! [`distance_bound_squared`]: crate::structure::bvh::NodeVolume::distance_bound_squared
 
-use super::MAX_DEPTH;
-use super::fast_nearest::{Best, reach_squared};
-use super::volume::{GROW, query_slack};
-use super::wide_stack::{Lane, MIDDLE_DEPTH, SHALLOW_DEPTH, capacity, visit_nearest};
-use super::wide_tree::{Bvh4, Bvh4Node, WIDTH};
+use super::layout::{Bvh4, Bvh4Node, WIDTH};
+use super::stack::{Lane, MIDDLE_DEPTH, SHALLOW_DEPTH, capacity, visit_nearest};
 use crate::structure::Nearest;
+use crate::structure::bvh::MAX_DEPTH;
+use crate::structure::bvh::volume::{GROW, query_slack};
+use crate::structure::bvh::walk::fast_nearest::{Best, reach_squared};
 use crate::{Primitive, Vector};
 
 /// The squared distance bounds of the four children's boxes, and a bit set for each lane

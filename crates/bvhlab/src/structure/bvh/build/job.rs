@@ -8,10 +8,10 @@
 
 use std::fmt;
 
-use super::build::{Builder, Fits};
-use super::volume::NodeVolume;
-use super::{Bvh, BvhOptions};
+use super::{Builder, Fits};
 use crate::Primitive;
+use crate::structure::bvh::volume::NodeVolume;
+use crate::structure::bvh::{Bvh, BvhOptions};
 
 /// What a build in slices is doing.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -127,12 +127,14 @@ where
     ///
     /// Two pieces are done in one go: a node's object median (a selection, one unit per
     /// primitive; about 6 ms for the root of a million triangles in the test profile), and
-    /// a node's Welzl sphere ([`SphereFit::Welzl`](super::SphereFit::Welzl); up to 200 ms
+    /// a node's Welzl sphere ([`SphereFit::Welzl`]; up to 200 ms
     /// near the root of a million triangles: prefer Ritter's for large inputs). Such a piece
     /// does not start in a step that has already used part of its budget unless it fits in
     /// the rest, so a step takes at most the larger of its budget and one such piece.
     ///
     /// A budget of 0 does nothing; any positive budget does at least one unit.
+    ///
+    /// [`SphereFit::Welzl`]: crate::structure::bvh::SphereFit::Welzl
     pub fn step(&mut self, budget: usize) -> BuildProgress {
         self.builder.run(&self.prims, budget, &mut ());
         self.progress()

@@ -1,4 +1,4 @@
-//! The unobserved closest point: the k-nearest walk of `traverse_nearest` for `k = 1`,
+//! The unobserved closest point: the k-nearest walk of `nearest.rs` for `k = 1`,
 //! without the bookkeeping that only the lab needs.
 //!
 //! The observed walk keeps the k best in a [`NearestSet`](crate::structure::NearestSet) (a
@@ -16,9 +16,9 @@
 //! is the least `(distance, index)` over every primitive not pruned, whatever the order they
 //! are met in.
 
-use super::volume::{GROW, NodeVolume, query_slack};
-use super::{Bvh, MAX_DEPTH};
 use crate::structure::Nearest;
+use crate::structure::bvh::volume::{GROW, NodeVolume, query_slack};
+use crate::structure::bvh::{Bvh, MAX_DEPTH};
 use crate::{Primitive, Vector};
 
 /// One waiting sibling per level, plus room for the root.
@@ -31,7 +31,10 @@ where
 {
     /// The primitive nearest to `point` (ties by index), none for a non-finite point: what
     /// `k_nearest_impl(point, 1, &mut ())` answers, found faster.
-    pub(super) fn closest_point_fast(&self, point: P::Point) -> Option<Nearest<P::Point>> {
+    pub(in crate::structure::bvh) fn closest_point_fast(
+        &self,
+        point: P::Point,
+    ) -> Option<Nearest<P::Point>> {
         if self.nodes.is_empty() || !point.is_finite() {
             return None;
         }
@@ -118,7 +121,7 @@ where
 /// cover both with room (see [`NodeVolume::distance_bound_squared`]). Visiting a few
 /// nodes more than the observed walk cannot change the answer; visiting fewer could.
 #[inline]
-pub(super) fn reach_squared(reach: f32) -> f32 {
+pub(in crate::structure::bvh) fn reach_squared(reach: f32) -> f32 {
     reach * reach * (1.0 + 4e-6) + 4.0 * f32::from_bits(1)
 }
 
@@ -127,14 +130,14 @@ pub(super) fn reach_squared(reach: f32) -> f32 {
 /// NaN beats (one at distance `+inf` by its lower index, as input indices are `u32`), just
 /// as every such primitive replaces `None` in the observed walk; a NaN distance never wins.
 /// The binary and the 4-wide fast walks share it.
-pub(super) struct Best<V: Vector> {
-    pub(super) prim: usize,
-    pub(super) point: V,
-    pub(super) distance: f32,
+pub(in crate::structure::bvh) struct Best<V: Vector> {
+    pub(in crate::structure::bvh) prim: usize,
+    pub(in crate::structure::bvh) point: V,
+    pub(in crate::structure::bvh) distance: f32,
 }
 
 impl<V: Vector> Best<V> {
-    pub(super) const NONE: Self = Self {
+    pub(in crate::structure::bvh) const NONE: Self = Self {
         prim: usize::MAX,
         point: V::ZERO,
         distance: f32::INFINITY,
@@ -143,7 +146,7 @@ impl<V: Vector> Best<V> {
     /// Tests the primitives of one leaf (`ids` are their input indices) with the observed
     /// walk's rule, the least `(distance, index)` wins; whether the best changed.
     #[inline]
-    pub(super) fn test_leaf<P: Primitive<Point = V>>(
+    pub(in crate::structure::bvh) fn test_leaf<P: Primitive<Point = V>>(
         &mut self,
         prims: &[P],
         ids: &[u32],
@@ -167,7 +170,7 @@ impl<V: Vector> Best<V> {
     }
 
     /// The answer: none when no primitive had a distance that is not NaN.
-    pub(super) fn into_nearest(self) -> Option<Nearest<V>> {
+    pub(in crate::structure::bvh) fn into_nearest(self) -> Option<Nearest<V>> {
         (self.prim != usize::MAX).then_some(Nearest {
             prim: self.prim,
             point: self.point,

@@ -1,9 +1,9 @@
 //! The numbers that compare one tree with another: size, depth, leaf sizes, memory, SAH cost.
 
-use super::Bvh;
-use super::volume::NodeVolume;
 use crate::Primitive;
 use crate::structure::Stats;
+use crate::structure::bvh::Bvh;
+use crate::structure::bvh::volume::NodeVolume;
 use crate::structure::stats::sah_cost;
 
 impl<B, P> Bvh<B, P>
@@ -32,7 +32,7 @@ where
     /// Node and leaf counts, depth, leaf sizes, memory and the SAH cost of the node volumes
     /// (their surface areas, perimeters in 2D, relative to the root's: for a sphere tree the
     /// spheres', so the cost also measures how loose the volumes are).
-    pub(super) fn stats_impl(&self) -> Stats {
+    pub(in crate::structure::bvh) fn stats_impl(&self) -> Stats {
         let leaves = || self.nodes.iter().filter(|n| n.is_leaf());
         let memory_bytes = self.nodes.capacity() * size_of::<super::BvhNode<B>>()
             + (self.prims.capacity() + self.leaf_prims.capacity()) * size_of::<P>()

@@ -4,21 +4,21 @@
 //! on the stack, and trees are at most [`MAX_DEPTH`] deep, so `MAX_DEPTH + 2` entries always
 //! suffice.
 
-use super::MAX_DEPTH;
+use crate::structure::bvh::MAX_DEPTH;
 
 /// Capacity: one waiting sibling per level, plus the node about to be popped.
 const CAPACITY: usize = MAX_DEPTH + 2;
 
 /// A node waiting to be visited, with the key it was queued by (entry `t` or distance).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub(super) struct Entry {
+pub(in crate::structure::bvh) struct Entry {
     pub node: u32,
     pub depth: u32,
     pub key: f32,
 }
 
 /// A last-in, first-out stack of [`Entry`]s.
-pub(super) struct Stack {
+pub(in crate::structure::bvh) struct Stack {
     items: [Entry; CAPACITY],
     len: usize,
 }

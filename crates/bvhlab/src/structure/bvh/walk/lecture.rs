@@ -5,8 +5,8 @@
 //! The slides give two recursive pseudocodes and note what they omit: `intersect(bvNode, ray,
 //! t)` recurses into the left child, then the right, whatever the hits found so far, and
 //! `minDistance(bvNode, point, currentMin)` recurses into both children of every node without
-//! testing a single bounding volume. The real traversals (`traverse_ray.rs`,
-//! `traverse_nearest.rs`) visit the nearer child first and skip what cannot beat the best so
+//! testing a single bounding volume. The real traversals (`ray.rs`,
+//! `nearest.rs`) visit the nearer child first and skip what cannot beat the best so
 //! far. The versions here are the slides' recursions as written, plus a third, the distance
 //! query with the pruning the slide mentions but still in the slide's left-then-right order,
 //! so that the lab can show each omission's cost on its own.
@@ -15,10 +15,10 @@
 //! primitive, ties to the lower index): each call returns its subtree's best, as the slides'
 //! return values do, and a query-wide tracker of the best so far reports `NewBest` (and, for
 //! the pruned distance query, bounds the pruning). Recursion depth is bounded by the tree's
-//! depth, at most [`MAX_DEPTH`](super::MAX_DEPTH).
+//! depth, at most [`MAX_DEPTH`](crate::structure::bvh::MAX_DEPTH).
 
-use super::Bvh;
-use super::volume::{GROW, NodeVolume, PreparedRay, query_slack};
+use crate::structure::bvh::Bvh;
+use crate::structure::bvh::volume::{GROW, NodeVolume, PreparedRay, query_slack};
 use crate::structure::{
     Event, Hit, HitTracker, Nearest, NearestSet, NodeId, Observer, PrimitiveResult, PruneReason,
     QueryCost, Traced,
@@ -105,13 +105,15 @@ where
     ///
     /// A node at exactly `currentMin` is still entered, as in the real traversal: a primitive
     /// there may tie, and ties go to the lower index. Like the real traversal, the comparison
-    /// allows the volumes' rounding slack ([`SLACK`](super::SLACK) of the distances and of
+    /// allows the volumes' rounding slack ([`SLACK`] of the distances and of
     /// the point's coordinates).
     ///
     /// Events: those of the unpruned query, with, at the start of each call (before its
     /// `EnterNode`), `DistanceBoundTest` with the distance from the point to the node's
     /// volume, then `Prune(NoNearer)` with that distance and `currentMin` when the node is
     /// skipped (and the call returns).
+    ///
+    /// [`SLACK`]: crate::structure::bvh::SLACK
     pub fn lecture_min_distance_pruned_observed<O: Observer<P::Point>>(
         &self,
         point: P::Point,
