@@ -2,10 +2,20 @@
 //! lab's playback, pseudocode highlighting and counters.
 //!
 //! Every builder and query takes an [`Observer`] and reports each step as an [`Event`]. The
-//! no-op observer `()` has an empty, inlined [`Observer::on`], and events are small `Copy`
-//! values built from numbers the algorithm computes anyway, so an unobserved query compiles to
-//! the same code as one with no observer at all (tinybvh and madmann91/bvh use the same
-//! pattern for their traversal callbacks).
+//! no-op observer `()` has an empty, always inlined [`Observer::on`], and events are small
+//! `Copy` values built from numbers the algorithm computes anyway, so passing `()` costs
+//! nothing: the reports vanish from the walk it is passed to (tinybvh and madmann91/bvh use
+//! the same pattern for their traversal callbacks). The plain queries of [`SpatialIndex`]
+//! (`ray_first_hit`, `k_nearest`, ...) are their `_observed` walks with `()`.
+//!
+//! What `()` does not remove is the bookkeeping of a walk written to be watched: the depth
+//! of each waiting node, the order of its pushes, the counters of its
+//! [`QueryCost`](super::QueryCost). So a BVH's plain `ray_first_hit` and `closest_point`,
+//! the two queries asked most often, take walks of their own without it, which answer
+//! exactly as the observed walks do ([`bvh`](super::bvh) has the table of which call runs
+//! which walk).
+//!
+//! [`SpatialIndex`]: super::SpatialIndex
 
 use crate::Vector;
 
