@@ -15,6 +15,7 @@ pub mod mailbox;
 pub mod observe;
 pub mod octree;
 pub mod outline;
+pub mod plane_tree;
 pub mod query;
 pub mod stats;
 

@@ -1,5 +1,7 @@
 //! What both k-d tree builders share: the node array, the build events, and how a split
-//! plane sends a node's primitives to its children.
+//! plane sends a node's primitives to its children. The builders are [`median`] (the median
+//! of the centres) and [`sah`] (the surface area heuristic, over the sorted edge events of
+//! [`sah_events`]).
 //!
 //! A primitive goes to each child cell that it has points in, so that every point of a
 //! primitive lies in the closed cell of some leaf that lists it, which is all the queries need:
@@ -16,6 +18,10 @@
 //! node's share of the reference budget ([`REFERENCE_BUDGET`] references per primitive,
 //! shared out among children in proportion to their sizes).
 
+pub mod median;
+pub mod sah;
+pub mod sah_events;
+
 use glam::DVec3;
 
 use super::layout::KdNode;
@@ -24,7 +30,7 @@ use crate::structure::{Event, NodeId, Observer};
 use crate::volume::Aabb;
 use crate::{Primitive, Vector};
 
-pub use crate::structure::bsp::REFERENCE_BUDGET;
+pub use crate::structure::plane_tree::REFERENCE_BUDGET;
 
 /// The deepest a tree may grow, whatever the options say (the recursion depth).
 pub const DEPTH_LIMIT: usize = 64;

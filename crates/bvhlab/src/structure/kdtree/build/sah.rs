@@ -8,11 +8,11 @@
 //! more than four times the leaf for a small node, or after three splits in a row that cost
 //! more than their leaves ("bad refines", which may still pay off further down).
 
-use super::build::{Builder, Subtree};
-use super::options::SahCosts;
 use super::sah_events::{EventArena, Events};
+use super::{Builder, Subtree};
 use crate::structure::Observer;
-use crate::structure::bsp::plane_tree::share_budget;
+use crate::structure::kdtree::options::SahCosts;
+use crate::structure::plane_tree::share_budget;
 use crate::volume::Aabb;
 use crate::{Primitive, Vector};
 

@@ -10,7 +10,7 @@
 //! (Wald and Havran re-create and sort the straddlers' events; with bounds clipped to the cell
 //! rather than "perfect" polygon clipping, this is unnecessary.)
 
-use super::build::{ABOVE, BELOW, STRADDLES};
+use super::{ABOVE, BELOW, STRADDLES};
 use crate::Vector;
 use crate::volume::Aabb;
 

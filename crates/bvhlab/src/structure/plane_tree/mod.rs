@@ -1,9 +1,17 @@
-//! What a BSP tree and a k-d tree have in common: a binary tree of half-spaces whose leaves
-//! list primitives. A k-d tree is a BSP tree whose planes are axis-aligned (Fuchs, Kedem and
-//! Naylor 1980; Bentley 1975), so every query is written once, against `PlaneTree`, and each
-//! tree only says how a ray crosses one of its planes and how big a child's region is. The k-d
-//! tree answers `PlaneTree::crossing` with one coordinate and the ray's precomputed `1/d`
-//! (its fast axis-aligned path); the BSP tree with two dot products.
+//! Plane trees: what a BSP tree ([`super::bsp`]) and a k-d tree ([`super::kdtree`]) have in
+//! common, a binary tree of half-spaces whose leaves list primitives. A k-d tree is a BSP
+//! tree whose planes are axis-aligned (Fuchs, Kedem and Naylor 1980; Bentley 1975), so every
+//! query is written once, here, against `PlaneTree`, and each tree only says how a ray
+//! crosses one of its planes and how big a child's region is. The k-d tree answers
+//! `PlaneTree::crossing` with one coordinate and the ray's precomputed `1/d` (its fast
+//! axis-aligned path); the BSP tree with two dot products.
+//!
+//! - this file: the `PlaneTree` trait, plane crossings, the reference budget;
+//! - [`ray`]: first hit, any hit, all hits, front to back by the split distance (the k-d
+//!   traversal and the BSP traversal);
+//! - [`nearest`]: the k nearest, by branch and bound;
+//! - [`range`]: the range query; [`collide`]: tree against tree;
+//! - [`validate`]: the checks and statistics both trees share.
 //!
 //! ## Rounding
 //! The queries must find exactly the hits and neighbours that brute force finds. A split `t`
@@ -11,6 +19,12 @@
 //! own `t` too, so every crossing carries an error margin `err` and a child's `t`-interval is
 //! widened by it on the side of the plane: near the plane both children are visited. Widening
 //! only ever visits more, it never skips a primitive brute force would report.
+
+pub mod collide;
+pub mod nearest;
+pub mod range;
+pub mod ray;
+pub mod validate;
 
 use crate::structure::NodeId;
 use crate::volume::Aabb;

@@ -12,7 +12,7 @@
 
 use std::collections::HashSet;
 
-use super::plane_tree::{PlaneNode, PlaneTree, PointOfTree, ROOT, node_id};
+use super::{PlaneNode, PlaneTree, PointOfTree, ROOT, node_id};
 use crate::Primitive;
 use crate::structure::{Event, Observer, QueryCost, Traced};
 use crate::volume::{Aabb, BoundingVolume};

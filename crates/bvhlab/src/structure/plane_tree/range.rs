@@ -9,7 +9,7 @@
 //! `Prune { NoOverlap }`; in a leaf [`Event::PrimitiveTest`] (`Overlap`, `NoOverlap`, or
 //! `AlreadyTested`).
 
-use super::plane_tree::{PlaneNode, PlaneTree, PointOfTree, ROOT, SLACK, magnitude, node_id};
+use super::{PlaneNode, PlaneTree, PointOfTree, ROOT, SLACK, magnitude, node_id};
 use crate::Vector;
 use crate::structure::{
     Event, Mailbox, Observer, PrimitiveResult, PruneReason, QueryCost, RangeShape, Traced,

@@ -1,7 +1,7 @@
 //! Statistics and the well-formedness checks every plane tree shares: the depth-first node
 //! layout, leaf contents, the nodes' boxes, and where each primitive must be stored.
 
-use super::plane_tree::{PlaneNode, PlaneTree, PointOfTree, ROOT};
+use super::{PlaneNode, PlaneTree, PointOfTree, ROOT};
 use crate::structure::stats::sah_cost_boxes;
 use crate::structure::{Stats, ValidationError};
 use crate::volume::{Aabb, BoundingVolume};

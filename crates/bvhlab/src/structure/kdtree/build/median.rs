@@ -7,10 +7,10 @@
 //! neither separates the primitives on any axis (every one straddles, or all are identical) the
 //! node is a leaf.
 
-use super::build::{ABOVE, BELOW, Builder, Subtree};
-use super::options::AxisRule;
+use super::{ABOVE, BELOW, Builder, Subtree};
 use crate::structure::Observer;
-use crate::structure::bsp::plane_tree::share_budget;
+use crate::structure::kdtree::options::AxisRule;
+use crate::structure::plane_tree::share_budget;
 use crate::volume::Aabb;
 use crate::{Primitive, Vector};
 

@@ -24,7 +24,7 @@
 //! [`Event::NewBest`], and `HitBeyondRegion`. When the search stops, every region left on the
 //! stack is reported pruned (`BeyondBestHit`, or `AlreadyHit` for the any-hit query).
 
-use super::plane_tree::{PlaneNode, PlaneTree, PointOfTree, ROOT, node_id, root_interval};
+use super::{PlaneNode, PlaneTree, PointOfTree, ROOT, node_id, root_interval};
 use crate::structure::query::by_t_then_prim;
 use crate::structure::{
     Event, Hit, HitTracker, Mailbox, Observer, PrimitiveResult, PruneReason, QueryCost, Traced,

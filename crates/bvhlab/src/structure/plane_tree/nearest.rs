@@ -15,7 +15,7 @@
 //! [`Event::PrimitiveTest`] with the distance (`AlreadyTested` for a mailboxed primitive) and
 //! [`Event::NewBest`] with the primitive's distance when it enters the k nearest.
 
-use super::plane_tree::{PlaneNode, PlaneTree, PointOfTree, ROOT, SLACK, magnitude, node_id};
+use super::{PlaneNode, PlaneTree, PointOfTree, ROOT, SLACK, magnitude, node_id};
 use crate::structure::{
     Event, Mailbox, Nearest, NearestSet, Observer, PrimitiveResult, PruneReason, QueryCost, Traced,
 };
