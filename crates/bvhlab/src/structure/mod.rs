@@ -13,9 +13,10 @@ pub mod grid;
 pub mod kdtree;
 pub mod mailbox;
 pub mod observe;
-pub mod octree;
 pub mod outline;
 pub mod plane_tree;
+#[doc(alias = "octree", alias = "orthtree")]
+pub mod quadtree;
 pub mod query;
 pub mod stats;
 
@@ -26,8 +27,8 @@ pub use grid::{Grid, GridOptions};
 pub use kdtree::{KdTree, KdTreeOptions};
 pub use mailbox::Mailbox;
 pub use observe::{Event, NodeId, Observer, PrimitiveResult, PruneReason, Recorder};
-pub use octree::{Orthtree, OrthtreeOptions};
 pub use outline::{NodeOutline, NodeShape, Outline, SplitPlane};
+pub use quadtree::{Orthtree, OrthtreeOptions};
 pub use query::{Hit, HitTracker, Nearest, NearestSet, QueryCost, RangeShape, Traced};
 pub use stats::{Stats, ValidationError};
 

@@ -9,7 +9,7 @@
 //! - [`range_collide`]: range and grid-against-grid collision.
 //! - [`validate`]: invariants and statistics.
 //! - `tolerance` and `probe` (crate-private): the rounding tolerances and the per-query
-//!   bookkeeping that the grid and the 2^D tree ([`super::octree`]) share.
+//!   bookkeeping that the grid and the quadtree/octree ([`super::quadtree`]) share.
 //!
 //! Query events: ray queries report [`Event::CellEnter`] for each cell walked (with its
 //! coordinates and `[t_enter, t_exit]`), [`Event::PrimitiveTest`] (including

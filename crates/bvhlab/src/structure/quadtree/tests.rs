@@ -5,7 +5,7 @@ use glam::{Vec2, Vec3};
 
 use super::build::{Split, child_mask, cube_around};
 use super::layout::{child_box_at, child_count, split_point};
-use super::traverse::HalfSlabs;
+use super::ray::HalfSlabs;
 use crate::structure::grid::tolerance::ray_box_interval;
 use crate::volume::Aabb;
 use crate::{BoundingVolume, Ray, Segment2, Triangle3};

@@ -1,12 +1,19 @@
 //! The region quadtree (2D) and octree (3D): one implementation with 2^D children per cell
-//! (lecture §3, "Non-uniform axis-aligned spatial subdivision").
+//! (lecture §3, "Non-uniform axis-aligned spatial subdivision"). The type is [`Orthtree`]
+//! ("orthant tree", the name for every dimension); [`Quadtree2`](crate::Quadtree2) and
+//! [`Octree3`](crate::Octree3) are its 2D and 3D aliases, and this folder serves both.
 //!
 //! - [`layout`]: the [`Orthtree`], its [`OrthtreeOptions`], 8-byte nodes, child boxes.
 //! - [`build`]: top-down splitting, each primitive sent to every child it touches.
-//! - [`traverse`]: ray first hit, any hit, all hits, front to back with mailboxing.
-//! - [`nearest`]: k nearest, best-first from the query point's cell outward.
-//! - [`range_collide`]: range, and tree-against-tree collision by simultaneous descent.
+//! - [`ray`]: ray first hit, any hit, all hits, front to back with mailboxing.
+//! - [`nearest`]: k nearest (the lecture's distance query), best-first from the query
+//!   point's cell outward.
+//! - [`range`]: the primitives in a range.
+//! - [`collide`]: tree-against-tree collision by simultaneous descent.
 //! - [`validate`]: invariants and statistics.
+//!
+//! The rounding tolerances and the per-query bookkeeping (mailbox, probes) are the grid's
+//! (`grid/tolerance.rs`, `grid/probe.rs`), which both space partitions share.
 //!
 //! Query events: ray queries report [`Event::RayBoundTest`] per cell tested (with
 //! `Prune(RayMissed)` on a miss), [`Event::ChildQueued`] for the children met in order of
@@ -29,10 +36,11 @@
 //! [`Event::PairTest`]: crate::Event::PairTest
 
 pub mod build;
+pub mod collide;
 pub mod layout;
 pub mod nearest;
-pub mod range_collide;
-pub mod traverse;
+pub mod range;
+pub mod ray;
 pub mod validate;
 
 #[cfg(test)]

@@ -38,7 +38,7 @@ pub(super) const INNER: u32 = u32::MAX;
 /// A leaf has `count` primitive references at `refs[first..first + count]`; an inner node has
 /// `count == INNER` and its 2^D children at `nodes[first..first + 2^D]`, child `k` being the
 /// closed sub-box that takes the upper half of axis `i` when bit `i` of `k` is set.
-/// Boxes are not stored: each is computed from its parent's by [`child_box`] during traversal,
+/// Boxes are not stored: each is computed from its parent's by [`child_box_at`] during traversal,
 /// the same computation the build did, so build and queries agree to the bit.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
