@@ -74,8 +74,9 @@
 //!
 //! One subfolder per job, as parry splits its BVH by phase:
 //!
-//! - [`layout`]: the tree and its node ([`Bvh`], [`BvhNode`]) and their statistics
-//!   (`layout/stats.rs`).
+//! - [`layout`]: the tree and its node ([`Bvh`], [`BvhNode`]), their statistics
+//!   (`layout/stats.rs`), and the flat node and triangle arrays that the app's GPU heat map
+//!   reads ([`layout::gpu`], mirrored by WGSL in the app).
 //! - [`volume`]: what a node volume answers ([`NodeVolume`], [`PreparedRay`],
 //!   [`PreparedRange`]), one file per volume (`aabb.rs` with the slab test, `sphere.rs`,
 //!   `obb.rs`), and the node fits of a build run in slices (`fit_sliced/`).

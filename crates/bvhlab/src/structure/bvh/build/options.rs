@@ -3,6 +3,8 @@
 /// The deepest a tree may grow (the root is depth 0). Builds stop splitting here and make a
 /// leaf of whatever is left, so traversal stacks have a fixed size and build recursion a fixed
 /// depth. A balanced tree over 2^32 primitives is 32 deep; only degenerate inputs come near.
+/// The app's heat map shader sizes its stack from it (`STACK` in `trace.wgsl`, checked
+/// against this by the app's shader test).
 pub const MAX_DEPTH: usize = 64;
 
 /// How a node's primitives are divided between its two children. Every method picks a plane

@@ -1,7 +1,9 @@
 //! The layout: a flat, depth-first array of binary nodes, and the primitives in leaf order.
 //!
-//! Beside it: `stats.rs`, the numbers that compare one tree with another.
+//! Beside it: [`gpu`], the same AABB tree flattened for the app's GPU heat map (the layout
+//! its WGSL mirrors), and `stats.rs`, the numbers that compare one tree with another.
 
+pub mod gpu;
 mod stats;
 
 use super::BvhOptions;
@@ -24,6 +26,9 @@ use crate::{Primitive, Vector};
 ///
 /// A sphere node is 24 bytes (centre, radius, start, count), an OBB node 68 (centre, three
 /// axes, half extents, start, count); in 2D every volume is smaller.
+///
+/// The app's GPU heat map reads AABB nodes as [`gpu::GpuNode`], which [`gpu`] makes from
+/// these: a change here must be carried there (and into the WGSL it names).
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[repr(C)]
 pub struct BvhNode<B> {

@@ -34,6 +34,10 @@ impl<V: Vector> NodeVolume for Aabb<V> {
     /// slack through the precomputed shifted origins, and the far end is grown by [`GROW`]
     /// (Ize, "Robust BVH Ray Traversal", JCGT 2013), so that a ray grazing a primitive on
     /// the box's boundary is not refused by the box's rounding.
+    ///
+    /// Mirrored in WGSL by `box_entry` in the app's heat map shader
+    /// (`crates/bvhlab-app/src/view3d/heatmap/trace.wgsl`), which must give the same entry `t`
+    /// bit for bit: a change here must be made there too.
     #[inline]
     fn ray_entry(&self, ray: &PreparedRay<V>) -> Option<(f32, f32)> {
         let mut t_enter = 0.0f32;

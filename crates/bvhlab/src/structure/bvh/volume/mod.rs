@@ -181,6 +181,10 @@ impl WideRay {
 
 impl<V: Vector> PreparedRay<V> {
     /// Precomputes what the node tests need.
+    ///
+    /// Mirrored in WGSL by `prepare_ray` in the app's heat map shader
+    /// (`crates/bvhlab-app/src/view3d/heatmap/trace.wgsl`; the shifted origins come from its
+    /// `Params`, filled in `heatmap/gpu.rs`): a change here must be made there too.
     pub fn new(ray: &Ray<V>) -> Self {
         let (origin, inv_dir) = (ray.origin(), ray.inv_dir());
         let slack = SLACK * magnitude(origin) + TINY;

@@ -5,6 +5,12 @@
 //! are visited nearer entry first; a node is skipped when the ray enters it beyond the best
 //! hit so far (for any-hit and all-hits queries: beyond `t_max`). The three queries share
 //! this walk and differ only in what a leaf does with its primitives ([`RayVisitor`]).
+//!
+//! The first-hit walk is mirrored in WGSL by `trace` in the app's heat map shader
+//! (`crates/bvhlab-app/src/view3d/heatmap/trace.wgsl`), which must visit and test exactly what it
+//! does, to count the same nodes and triangles: a change to the order of visits, the
+//! pruning or the counting must be made there too. The layout it reads is
+//! [`layout::gpu`](crate::structure::bvh::layout::gpu).
 
 use super::stack::{Entry, Stack};
 use crate::structure::bvh::Bvh;

@@ -48,7 +48,8 @@ impl Stack {
 
     /// Pushes the children that survived their tests, the later-visited first, so that the
     /// nearer (smaller key) is popped next; ties keep the first child first. Returns them in
-    /// visiting order.
+    /// visiting order. The first-hit walk's order is mirrored in the app's heat map shader
+    /// (`trace.wgsl`, in `trace`): a change here must be made there too.
     #[inline]
     pub fn push_pair(&mut self, a: Option<Entry>, b: Option<Entry>) -> [Option<Entry>; 2] {
         let order = match (a, b) {
