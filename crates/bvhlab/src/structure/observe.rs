@@ -5,8 +5,8 @@
 //! no-op observer `()` has an empty, always inlined [`Observer::on`], and events are small
 //! `Copy` values built from numbers the algorithm computes anyway, so passing `()` costs
 //! nothing: the reports vanish from the walk it is passed to (tinybvh and madmann91/bvh use
-//! the same pattern for their traversal callbacks). The plain queries of [`SpatialIndex`]
-//! (`ray_first_hit`, `k_nearest`, ...) are their `_observed` walks with `()`.
+//! the same pattern for their traversal callbacks). By default the plain queries of
+//! [`SpatialIndex`] (`ray_first_hit`, `k_nearest`, ...) are their `_observed` walks with `()`.
 //!
 //! What `()` does not remove is the bookkeeping of a walk written to be watched: the depth
 //! of each waiting node, the order of its pushes, the counters of its
