@@ -69,7 +69,7 @@ fn rays() -> Vec<(Ray2, Vec2)> {
     out
 }
 
-fn scenes() -> Vec<bvhlab_app::model::scene::Scene> {
+fn scenes() -> Vec<Scene> {
     vec![
         random_segments(300, 50.0, 3.0, 11),
         random_segments(60, 50.0, 8.0, 12),

@@ -3,6 +3,7 @@
 //! the compiler wgpu itself uses. Failures read as naga's own messages, with the file name and
 //! line. Shaders without compute entry points are also translated to GLSL ES 3.00 for WebGL2,
 //! the web's fallback, which has no storage buffers, so one written for WebGPU only fails here.
+//! The heat map's tree structs are checked against the core's GPU layout they mirror.
 
 use std::path::{Path, PathBuf};
 
@@ -165,6 +166,103 @@ fn every_shader_parses_and_validates() {
             "{expected} not found in {names:?}"
         );
     }
+}
+
+/// The size of a struct's field, from a function that borrows it (`|n: &Node| &n.min`).
+fn field_size<T, F>(_: fn(&T) -> &F) -> u32 {
+    size_of::<F>() as u32
+}
+
+/// A Rust struct's size and its fields' names, offsets and sizes, in declaration order.
+macro_rules! rust_layout {
+    ($ty:ty { $($field:ident),* $(,)? }) => {
+        (
+            size_of::<$ty>() as u32,
+            vec![$((
+                stringify!($field).to_owned(),
+                std::mem::offset_of!($ty, $field) as u32,
+                field_size(|v: &$ty| &v.$field),
+            )),*],
+        )
+    };
+}
+
+/// The size of struct `name` in `module` and its members' names, offsets and sizes, as naga
+/// lays them out.
+fn wgsl_layout(module: &naga::Module, name: &str) -> (u32, Vec<(String, u32, u32)>) {
+    let mut layouter = naga::proc::Layouter::default();
+    layouter.update(module.to_ctx()).expect("the types lay out");
+    module
+        .types
+        .iter()
+        .find_map(|(_, ty)| match &ty.inner {
+            naga::TypeInner::Struct { members, span } if ty.name.as_deref() == Some(name) => {
+                let members = members
+                    .iter()
+                    .map(|m| {
+                        let member = m.name.clone().unwrap_or_default();
+                        (member, m.offset, layouter[m.ty].size)
+                    })
+                    .collect();
+                Some((*span, members))
+            }
+            _ => None,
+        })
+        .unwrap_or_else(|| panic!("struct {name} is declared"))
+}
+
+/// The value of the `u32` constant `name` in `module`.
+fn wgsl_u32_constant(module: &naga::Module, name: &str) -> u32 {
+    let constant = module
+        .constants
+        .iter()
+        .find_map(|(_, c)| (c.name.as_deref() == Some(name)).then_some(c))
+        .unwrap_or_else(|| panic!("constant {name} is declared"));
+    match module.global_expressions[constant.init] {
+        naga::Expression::Literal(naga::Literal::U32(value)) => value,
+        ref other => panic!("{name} is not a u32 literal: {other:?}"),
+    }
+}
+
+/// The heat map's shader reads the core's AABB tree as the core lays it out for the GPU
+/// (`bvhlab::structure::bvh::layout::gpu`): the same fields at the same offsets with the same
+/// sizes, structs of the same size, and a stack as deep as the core's walk needs. A change on
+/// either side without the other fails here.
+#[test]
+fn the_gpu_tree_layout_is_the_wgsl_layout() {
+    use bvhlab::structure::bvh::MAX_DEPTH;
+    use bvhlab::structure::bvh::layout::gpu::{GpuNode, GpuTriangle};
+    use bvhlab_app::render3d::heatmap::gpu::trace_shader_source;
+
+    let source = trace_shader_source();
+    let module = naga::front::wgsl::parse_str(&source).expect("valid WGSL");
+    assert_eq!(
+        wgsl_layout(&module, "Node"),
+        rust_layout!(GpuNode {
+            min,
+            start,
+            max,
+            count
+        }),
+        "trace.wgsl's Node against the core's GpuNode"
+    );
+    assert_eq!(
+        wgsl_layout(&module, "Tri"),
+        rust_layout!(GpuTriangle {
+            a,
+            id,
+            b,
+            flags,
+            c,
+            pad
+        }),
+        "trace.wgsl's Tri against the core's GpuTriangle"
+    );
+    assert_eq!(
+        wgsl_u32_constant(&module, "STACK") as usize,
+        MAX_DEPTH + 2,
+        "trace.wgsl's STACK against the core's stack capacity"
+    );
 }
 
 #[test]

@@ -1,6 +1,8 @@
-//! The observer costs nothing when unused: `ray_first_hit` (which passes the no-op observer
-//! `()`), `ray_first_hit_observed(.., &mut ())` spelled out, and, for contrast, an observer
-//! that does a little work per event (counts them), on the same rays.
+//! The observer costs nothing when unused: `ray_first_hit` (the plain call, which passes the
+//! no-op observer `()`; except in the AABB tree, whose plain first hit takes a walk of its own,
+//! `structure/bvh/walk/fast_ray.rs`), `ray_first_hit_observed(.., &mut ())` spelled out, and,
+//! for contrast, an observer that does a little work per event (counts them), on the same
+//! rays.
 //!
 //! Run: `cargo bench -p bvhlab-bench --bench observer`.
 

@@ -26,6 +26,20 @@
 //! assert_eq!((t_enter, t_exit), (5.0, 9.0));
 //! # Ok::<(), bvhlab::GeometryError>(())
 //! ```
+//!
+//! ## Where the code lives
+//!
+//! - [`primitive`]: segments, triangles (the watertight ray test in `primitive/triangle.rs`)
+//!   and points; [`volume`]: the bounding volumes, one file each (the lecture's slab test in
+//!   `volume/aabb.rs`).
+//! - [`structure`]: the query interface ([`SpatialIndex`], [`Observer`] and its [`Event`]s),
+//!   and one folder per structure: [`structure::bvh`] (sphere, AABB and OBB trees, in
+//!   `layout/`, `volume/` (node volumes and the BVH's slab test), `build/` (`median.rs`,
+//!   `sah.rs`), `walk/` and `wide/`), [`structure::kdtree`] and [`structure::bsp`], whose
+//!   walks they share in [`structure::plane_tree`], [`structure::grid`], and
+//!   [`structure::quadtree`] (the quadtree in 2D, the octree in 3D). Across structures a job
+//!   has one file name: `layout`, `build`, `ray`, `nearest`, `range`, `collide`, `validate`.
+//! - [`mesh`] (OBJ files), [`ray`], [`vector`], [`math`], [`error`].
 
 pub use glam;
 

@@ -4,7 +4,7 @@
 
 use bvhlab::glam::{Vec2, Vec3};
 use bvhlab::structure::grid::{Grid, GridOptions};
-use bvhlab::structure::octree::{Orthtree, OrthtreeOptions};
+use bvhlab::structure::quadtree::{Orthtree, OrthtreeOptions};
 use bvhlab::structure::{PointOf, RangeShape};
 use bvhlab::{Aabb, Primitive, Ray, Segment2, SpatialIndex, Sphere, Triangle3, Vector};
 use proptest::prelude::*;

@@ -6,7 +6,7 @@
 mod grid_support;
 
 use bvhlab::glam::{Vec2, Vec3};
-use bvhlab::structure::octree::{Orthtree, OrthtreeOptions};
+use bvhlab::structure::quadtree::{Orthtree, OrthtreeOptions};
 use bvhlab::structure::{NodeId, PrimitiveResult, Recorder};
 use bvhlab::{Event, Primitive, Ray, Segment2, SpatialIndex, Triangle3, Vector};
 use grid_support::{Map, check_queries, load_mesh, points_for, rays_for, rng, scenes};

@@ -1,6 +1,6 @@
-//! The builders: what the core's `build_observed` functions run (`bvh/build.rs` with
-//! `split_median.rs` and `split_sah.rs`, `kdtree/build*.rs`, `bsp/build.rs`,
-//! `octree/build.rs`, `grid/build.rs`).
+//! The builders: what the core's `build_observed` functions run (`bvh/build/` with
+//! `median.rs` and `sah.rs`, `kdtree/build/`, `bsp/build.rs`, `quadtree/build.rs`,
+//! `grid/build.rs`).
 //!
 //! The trees report each node when it is made (`BuildNode`), then how it was split
 //! (`BuildSplit`; the quadtree reports one per mid-line) or that it became a leaf

@@ -3,8 +3,8 @@
 //!
 //! The core makes the slides' recursive `intersect` and `minDistance` iterative with a stack,
 //! tests both children's volumes before descending, visits the nearer child first and skips
-//! a node that cannot hold anything better than the best so far (see `bvh/traverse_ray.rs`,
-//! `traverse_nearest.rs` and `traverse_range.rs` in the core).
+//! a node that cannot hold anything better than the best so far (see `bvh/walk/ray.rs`,
+//! `nearest.rs` and `range.rs` in the core).
 
 use bvhlab::Event;
 use bvhlab::Vector;
@@ -144,7 +144,7 @@ static RANGE: Listing = listing!(
     ]
 );
 
-/// The ray queries' events (`bvh/traverse_ray.rs`): a prune at its test is the root's miss
+/// The ray queries' events (`bvh/walk/ray.rs`): a prune at its test is the root's miss
 /// or a child's refusal (missed, or entered beyond the best hit); at a pop, a node behind the
 /// best hit; at the stop, the any-hit query skipping what is left.
 fn classify_ray<V: Vector>(event: &Event<V>) -> Option<Step> {
@@ -178,7 +178,7 @@ fn classify_ray<V: Vector>(event: &Event<V>) -> Option<Step> {
     })
 }
 
-/// The nearest query's events (`bvh/traverse_nearest.rs`): a child is pruned at its distance
+/// The nearest query's events (`bvh/walk/nearest.rs`): a child is pruned at its distance
 /// test, a node behind the bound when it is popped (the root is never refused at its test:
 /// the bound starts at infinity).
 fn classify_nearest<V: Vector>(event: &Event<V>) -> Option<Step> {
@@ -199,7 +199,7 @@ fn classify_nearest<V: Vector>(event: &Event<V>) -> Option<Step> {
     })
 }
 
-/// The range query's events (`bvh/traverse_range.rs`): volumes are tested silently, and
+/// The range query's events (`bvh/walk/range.rs`): volumes are tested silently, and
 /// only a miss is reported, as a prune at the test.
 fn classify_range<V: Vector>(event: &Event<V>) -> Option<Step> {
     Some(match *event {

@@ -1,5 +1,5 @@
-//! The uniform grid: what the core's `grid/ray_query.rs`, `nearest.rs` and
-//! `range_collide.rs` run.
+//! The uniform grid: what the core's `grid/ray.rs` (with `dda.rs`), `nearest.rs`,
+//! `range.rs` and `collide.rs` run.
 //!
 //! Each cell lists the primitives that overlap it, so a primitive spanning several cells is
 //! listed in each ("Duplicate Triangle") and the queries test it once (mailboxing, Amanatides

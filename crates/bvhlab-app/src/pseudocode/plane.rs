@@ -1,5 +1,5 @@
 //! k-d trees and BSP trees: binary trees of half-spaces, whose queries the core writes once
-//! (`bsp/traverse_ray.rs`, `traverse_nearest.rs`, `traverse_range.rs`; the k-d tree is the
+//! (`plane_tree/ray.rs`, `nearest.rs`, `range.rs`; the k-d tree is the
 //! special case with axis-aligned planes, see `kdtree/mod.rs`).
 //!
 //! A node's region is cut by its plane, and a primitive that straddles the plane is listed on

@@ -1,5 +1,5 @@
-//! The quadtree (the 2D octree): what the core's `octree/traverse.rs`, `nearest.rs` and
-//! `range_collide.rs` run.
+//! The quadtree (the 2D octree): what the core's `quadtree/ray.rs`, `nearest.rs`,
+//! `range.rs` and `collide.rs` run.
 //!
 //! A cell is split into four equal squares, and a primitive is listed in every child it
 //! touches, so the queries skip a primitive already tested (mailboxing). Empty leaves are

@@ -140,7 +140,7 @@ fn every_structure_is_laid_out_tidily() {
 
 #[test]
 fn an_empty_scene_is_laid_out_without_panicking() {
-    let layout = Layout::new::<bvhlab::glam::Vec2>(&[]);
+    let layout = Layout::new::<Vec2>(&[]);
     assert_eq!(layout.row_count(), 0);
     assert!(layout.pos.is_empty());
     assert!(layout.nodes_between(0, 0.0, 1.0).is_empty());

@@ -74,7 +74,8 @@ impl RayShear {
         }
     }
 
-    /// The setup for direction `d`.
+    /// The setup for direction `d`. Mirrored in WGSL at the end of `prepare_ray` in the app's
+    /// heat map shader (`trace.wgsl`): a change here must be made there too.
     pub(crate) fn of(d: Vec3) -> Self {
         // kz: the dominant axis of the direction; kx, ky follow it cyclically, swapped when
         // d[kz] < 0 to keep the winding (and so the sign convention) unchanged.
@@ -111,6 +112,11 @@ impl Triangle3 {
     /// mesh hits at least one of the triangles there. The edge tests and `t` are evaluated in
     /// `f64` (the paper's fallback for exact zeros, made the rule), which also keeps them exact
     /// in sign at any `f32` scale. Both sides are hit; a ray in the triangle's plane is not.
+    ///
+    /// Mirrored in WGSL by `ray_triangle` (with `shear`, `edge` and `edge_sign`, and the
+    /// `f64` arithmetic of `exact.wgsl` beside it) in the app's heat map shader
+    /// (`crates/bvhlab-app/src/render3d/heatmap/trace.wgsl`), which must give the same hits and `t`
+    /// bit for bit: a change here (or in `RayShear::of`) must be made there too.
     pub fn ray_hit(&self, ray: &Ray3) -> Option<f32> {
         // The permutation and shear of the ray's direction ([`RayShear`], made with the ray).
         let shear = ray.shear();

@@ -5,6 +5,26 @@
 //! an `_observed` form that reports every step to an [`Observer`] and returns its
 //! [`QueryCost`]. [`BruteForce`] answers the same queries by testing every primitive: it is the
 //! reference the tests compare against and the baseline the lab shows beside each structure.
+//!
+//! ## Where each structure lives
+//!
+//! One folder per structure, and one file name per job across them (a folder where a job
+//! has several files):
+//!
+//! | structure | layout | build | ray | nearest | range, collide | validate |
+//! | --- | --- | --- | --- | --- | --- | --- |
+//! | [`Bvh`] ([`bvh`]) | `layout/` | `build/` | `walk/ray.rs`, `walk/fast_ray.rs` | `walk/nearest.rs`, `walk/fast_nearest.rs` | `walk/range.rs`, `walk/collide.rs` | `validate.rs` |
+//! | [`KdTree`] ([`kdtree`]) | `layout.rs` | `build/` | `plane_tree/ray.rs` | `plane_tree/nearest.rs` | `plane_tree/range.rs`, `collide.rs` | `validate.rs` |
+//! | [`BspTree`] ([`bsp`]) | `layout.rs`, `plane.rs` | `build.rs`, `splitter.rs` | `plane_tree/ray.rs` | `plane_tree/nearest.rs` | `plane_tree/range.rs`, `collide.rs` | `validate.rs` |
+//! | [`Grid`] ([`grid`]) | `layout.rs` | `build.rs`, `resolution.rs` | `ray.rs` over `dda.rs` | `nearest.rs` | `range.rs`, `collide.rs` | `validate.rs` |
+//! | quadtree, octree: [`Orthtree`] ([`quadtree`]) | `layout.rs` | `build.rs` | `ray.rs` | `nearest.rs` | `range.rs`, `collide.rs` | `validate.rs` |
+//! | [`BruteForce`] | `brute_force.rs` | | | | | |
+//!
+//! The k-d tree and the BSP tree share their walks in [`plane_tree`] (a k-d tree is a BSP tree
+//! with axis-aligned planes); the grid and the quadtree share their rounding tolerances and
+//! per-query bookkeeping (`grid/tolerance.rs`, `grid/probe.rs`). Beside the structures:
+//! [`observe`] (the events), [`query`] (answers and their cost), [`outline`] (what the lab
+//! draws), [`stats`], [`mailbox`].
 
 pub mod brute_force;
 pub mod bsp;
@@ -13,8 +33,10 @@ pub mod grid;
 pub mod kdtree;
 pub mod mailbox;
 pub mod observe;
-pub mod octree;
 pub mod outline;
+pub mod plane_tree;
+#[doc(alias = "octree", alias = "orthtree")]
+pub mod quadtree;
 pub mod query;
 pub mod stats;
 
@@ -25,8 +47,8 @@ pub use grid::{Grid, GridOptions};
 pub use kdtree::{KdTree, KdTreeOptions};
 pub use mailbox::Mailbox;
 pub use observe::{Event, NodeId, Observer, PrimitiveResult, PruneAt, PruneReason, Recorder};
-pub use octree::{Orthtree, OrthtreeOptions};
 pub use outline::{NodeOutline, NodeShape, Outline, SplitPlane};
+pub use quadtree::{Orthtree, OrthtreeOptions};
 pub use query::{Hit, HitTracker, Nearest, NearestSet, QueryCost, RangeShape, Traced};
 pub use stats::{Stats, ValidationError};
 

@@ -2,10 +2,18 @@
 //! lab's playback, pseudocode highlighting and counters.
 //!
 //! Every builder and query takes an [`Observer`] and reports each step as an [`Event`]. The
-//! no-op observer `()` has an empty, inlined [`Observer::on`], and events are small `Copy`
-//! values built from numbers the algorithm computes anyway, so an unobserved query compiles to
-//! the same code as one with no observer at all (tinybvh and madmann91/bvh use the same
-//! pattern for their traversal callbacks).
+//! no-op observer `()` has an empty, always inlined [`Observer::on`], and events are small
+//! `Copy` values built from numbers the algorithm computes anyway, so passing `()` costs
+//! nothing: the reports vanish from the walk it is passed to (tinybvh and madmann91/bvh use
+//! the same pattern for their traversal callbacks). By default the plain queries of
+//! [`SpatialIndex`] (`ray_first_hit`, `k_nearest`, ...) are their `_observed` walks with `()`.
+//!
+//! What `()` does not remove is the bookkeeping of a walk written to be watched: the depth
+//! of each waiting node, the order of its pushes, the counters of its
+//! [`QueryCost`](super::QueryCost). So a BVH's plain `ray_first_hit` and `closest_point`,
+//! the two queries asked most often, take walks of their own without it, which answer
+//! exactly as the observed walks do ([`bvh`](super::bvh) has the table of which call runs
+//! which walk).
 //!
 //! # The order of events
 //!
@@ -31,8 +39,8 @@
 //! collide               = {PairTest(a, b)}              every pair, a then b in input order
 //! ```
 //!
-//! **BVH** (sphere, AABB and OBB trees: `bvh/traverse_ray.rs`, `traverse_nearest.rs`,
-//! `traverse_range.rs`, `traverse_collide.rs`). A refused node is not queued; `test` is
+//! **BVH** (sphere, AABB and OBB trees: `bvh/walk/ray.rs`, `nearest.rs`, `range.rs`,
+//! `collide.rs`). A refused node is not queued; `test` is
 //! `RayBoundTest` for rays, `DistanceBoundTest` for the nearest query, and nothing (a silent
 //! test) for a range.
 //!
@@ -52,7 +60,7 @@
 //! their primitive pairs; of any other overlapping pair the larger node (or the inner one) is
 //! opened and each of its children paired with the other node, first child first.
 //!
-//! **The slides' recursions** (`bvh/lecture.rs`): `c1` and `c2` are the left and right
+//! **The slides' recursions** (`bvh/walk/lecture.rs`): `c1` and `c2` are the left and right
 //! child, and `call` is the query's own recursion.
 //!
 //! ```text
@@ -63,8 +71,8 @@
 //! leaf           = {PrimitiveTest(p) [NewBest(p)]}
 //! ```
 //!
-//! **k-d and BSP trees** (`bsp/traverse_ray.rs`, `traverse_nearest.rs`, `traverse_range.rs`,
-//! `traverse_collide.rs`, shared through `plane_tree.rs`). A primitive listed in several
+//! **k-d and BSP trees** (`plane_tree/ray.rs`, `nearest.rs`, `range.rs`, `collide.rs`,
+//! shared through `plane_tree/mod.rs`). A primitive listed in several
 //! leaves is reported `AlreadyTested` after its first test (mailboxing), and gets no
 //! `NewBest` then.
 //!
@@ -98,7 +106,7 @@
 //! `BeyondBestHit` (the best hit, or `t_max`); the nearest query prunes `NoNearer`, the range
 //! `NoOverlap`.
 //!
-//! **Quadtrees and octrees** (`octree/traverse.rs`, `nearest.rs`, `range_collide.rs`). The
+//! **Quadtrees and octrees** (`quadtree/ray.rs`, `nearest.rs`, `range.rs`, `collide.rs`). The
 //! primitives with a non-finite coordinate sit in no cell: each query tests them first
 //! (`unplaced`, the leaf's grammar over them; an any-hit query that hits one ends there).
 //! Primitives listed in several cells are mailboxed, as in the k-d tree.
@@ -130,7 +138,7 @@
 //!
 //! A range that is not a finite box or ball tests every primitive, and reports nothing else.
 //!
-//! **Uniform grid** (`grid/ray_query.rs`, `nearest.rs`, `range_collide.rs`). Unplaced
+//! **Uniform grid** (`grid/ray.rs`, `nearest.rs`, `range.rs`, `collide.rs`). Unplaced
 //! primitives and mailboxing as in the quadtree; cells are named by their linear index.
 //!
 //! ```text
@@ -163,6 +171,8 @@
 //! node(n)  = BuildNode(n, parent) (BuildSplit(n) {BuildSplit(n)} {node(c)} | BuildLeaf(n))
 //! grid     = {BuildLeaf(c)}       each non-empty cell, in index order
 //! ```
+//!
+//! [`SpatialIndex`]: super::SpatialIndex
 
 use crate::Vector;
 

@@ -112,7 +112,8 @@ impl HitTracker {
         self.best.map_or(self.t_max, |h| h.t)
     }
 
-    /// Offers a hit; returns whether it became the best.
+    /// Offers a hit; returns whether it became the best. Mirrored in WGSL in `trace` of the
+    /// app's heat map shader (`trace.wgsl`): a change here must be made there too.
     #[inline]
     pub fn offer(&mut self, prim: usize, t: f32) -> bool {
         let better = match self.best {

@@ -255,10 +255,10 @@ impl GpuHeatMap {
         )?;
         // A binding cannot be empty: an empty tree gets one unused element of each.
         if nodes.is_empty() {
-            nodes.push(GpuNode::default());
+            nodes.push(GpuNode::default().to_words());
         }
         if triangles.is_empty() {
-            triangles.push(GpuTriangle::default());
+            triangles.push(GpuTriangle::default().to_words());
         }
         let buffer = |label, contents: &[u8]| {
             device.create_buffer_init(&wgpu::util::BufferInitDescriptor {

@@ -1,7 +1,10 @@
 // The traversal-cost heat map: one invocation per pixel casts the pixel's ray through the
 // flattened AABB tree exactly as the core's `Bvh::first_hit` does (bvhlab's
-// structure/bvh/traverse_ray.rs, node_aabb.rs, stack.rs, primitive/triangle.rs) and counts
-// the nodes it enters and the triangles it tests.
+// structure/bvh/walk/ray.rs and walk/stack.rs, structure/bvh/volume/aabb.rs and mod.rs,
+// primitive/triangle.rs) and counts the nodes it enters and the triangles it tests.
+//
+// `Node` and `Tri` are the core's `GpuNode` and `GpuTriangle` (structure/bvh/layout/gpu.rs),
+// and `STACK` its MAX_DEPTH + 2: tests/shaders.rs fails when they drift apart.
 //
 // Agreement with the CPU, bit for bit, rests on four rules (heatmap/mod.rs explains them):
 // every f32 operation is one the core performs, in the same order; a product that the core
@@ -10,6 +13,7 @@
 // exact.wgsl; and no infinity times zero is ever evaluated (the core's NaN cases are decided
 // by explicit comparisons).
 
+// The core's `GpuNode`.
 struct Node {
     min: vec3<f32>,
     // Leaf: first triangle (leaf order). Inner node: second child.
@@ -19,6 +23,7 @@ struct Node {
     count: u32,
 }
 
+// The core's `GpuTriangle`.
 struct Tri {
     a: vec3<f32>,
     // The triangle's input index.

@@ -10,9 +10,9 @@
 //! primitives cannot blow up.
 
 use super::layout::BspNode;
-use super::plane_tree::{REFERENCE_BUDGET, share_budget};
 use super::splitter::{SplitMix64, choose_split};
 use super::{BspOptions, BspTree};
+use crate::structure::plane_tree::{REFERENCE_BUDGET, share_budget};
 use crate::structure::{Event, NodeId, Observer};
 use crate::volume::{Aabb, BoundingVolume};
 use crate::{Primitive, Vector};

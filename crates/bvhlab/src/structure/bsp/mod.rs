@@ -3,34 +3,28 @@
 //!
 //! A [`BspTree`] cuts space with arbitrary planes (lines in 2D) chosen by autopartition
 //! ([`splitter`]); primitives that straddle a plane are listed on both sides. The queries are
-//! written once for every binary tree of half-spaces ([`plane_tree`]) and shared with the
-//! k-d tree ([`super::kdtree`]), which is the special case with axis-aligned planes:
-//! front-to-back ray traversal by plane distance ([`traverse_ray`]), branch-and-bound nearest
-//! neighbours ([`traverse_nearest`]), range ([`traverse_range`]) and collision
-//! ([`traverse_collide`]) queries. A node's region is a convex polytope; the queries that need
-//! a bound of it use the box of the node's primitives, which is conservative.
+//! written once for every binary tree of half-spaces, in [`super::plane_tree`], and shared
+//! with the k-d tree ([`super::kdtree`]), which is the special case with axis-aligned planes:
+//! front-to-back ray traversal by plane distance ([`plane_tree::ray`]), branch-and-bound
+//! nearest neighbours ([`plane_tree::nearest`]), range ([`plane_tree::range`]) and collision
+//! ([`plane_tree::collide`]) queries. A node's region is a convex polytope; the queries that
+//! need a bound of it use the box of the node's primitives, which is conservative.
 //!
 //! Files: [`layout`] (the node), [`plane`] (side and crossing tests), [`splitter`] and
-//! [`build`] (construction), [`validate`], and the shared [`plane_tree`] and
-//! [`plane_tree_check`].
+//! [`build`] (construction), and [`validate`] (with the checks of
+//! [`plane_tree::validate`]).
 
 pub mod build;
 pub mod layout;
 pub mod plane;
-pub mod plane_tree;
-pub mod plane_tree_check;
 pub mod splitter;
-pub mod traverse_collide;
-pub mod traverse_nearest;
-pub mod traverse_range;
-pub mod traverse_ray;
 pub mod validate;
 
+pub use super::plane_tree::REFERENCE_BUDGET;
 pub use layout::{BspNode, BspNodeView};
-pub use plane_tree::REFERENCE_BUDGET;
 
 use self::plane::Plane;
-use self::plane_tree::{Crossing, PlaneNode, PlaneTree};
+use super::plane_tree::{self, Crossing, PlaneNode, PlaneTree};
 use super::{
     Hit, Nearest, NodeId, Observer, RangeShape, SpatialIndex, Stats, Traced, ValidationError,
 };
@@ -220,7 +214,7 @@ impl<P: Primitive> SpatialIndex for BspTree<P> {
         t_max: f32,
         observer: &mut O,
     ) -> Traced<Option<Hit>> {
-        traverse_ray::first_hit(self, ray, t_max, observer)
+        plane_tree::ray::first_hit(self, ray, t_max, observer)
     }
 
     fn ray_any_hit_observed<O: Observer<P::Point>>(
@@ -229,7 +223,7 @@ impl<P: Primitive> SpatialIndex for BspTree<P> {
         t_max: f32,
         observer: &mut O,
     ) -> Traced<Option<Hit>> {
-        traverse_ray::any_hit(self, ray, t_max, observer)
+        plane_tree::ray::any_hit(self, ray, t_max, observer)
     }
 
     fn ray_all_hits_observed<O: Observer<P::Point>>(
@@ -238,7 +232,7 @@ impl<P: Primitive> SpatialIndex for BspTree<P> {
         t_max: f32,
         observer: &mut O,
     ) -> Traced<Vec<Hit>> {
-        traverse_ray::all_hits(self, ray, t_max, observer)
+        plane_tree::ray::all_hits(self, ray, t_max, observer)
     }
 
     fn k_nearest_observed<O: Observer<P::Point>>(
@@ -247,7 +241,7 @@ impl<P: Primitive> SpatialIndex for BspTree<P> {
         k: usize,
         observer: &mut O,
     ) -> Traced<Vec<Nearest<P::Point>>> {
-        traverse_nearest::k_nearest(self, point, k, observer)
+        plane_tree::nearest::k_nearest(self, point, k, observer)
     }
 
     fn range_observed<O: Observer<P::Point>>(
@@ -255,7 +249,7 @@ impl<P: Primitive> SpatialIndex for BspTree<P> {
         shape: &RangeShape<P::Point>,
         observer: &mut O,
     ) -> Traced<Vec<usize>> {
-        traverse_range::range(self, shape, observer)
+        plane_tree::range::range(self, shape, observer)
     }
 
     fn collide_observed<O: Observer<P::Point>>(
@@ -263,7 +257,7 @@ impl<P: Primitive> SpatialIndex for BspTree<P> {
         other: &Self,
         observer: &mut O,
     ) -> Traced<Vec<(usize, usize)>> {
-        traverse_collide::collide(self, other, observer)
+        plane_tree::collide::collide(self, other, observer)
     }
 
     /// The SAH cost is that of the nodes' boxes (the boxes of their primitives).
@@ -271,7 +265,7 @@ impl<P: Primitive> SpatialIndex for BspTree<P> {
         let memory = self.nodes.len() * size_of::<BspNode<P::Point>>()
             + self.indices.len() * size_of::<u32>()
             + self.prims.len() * size_of::<P>();
-        plane_tree_check::plane_tree_stats(self, memory)
+        plane_tree::validate::plane_tree_stats(self, memory)
     }
 
     fn validate(&self) -> Result<(), ValidationError> {

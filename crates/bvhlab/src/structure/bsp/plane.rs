@@ -5,7 +5,7 @@
 //! tolerance used here. Classification is conservative: a primitive goes to every side that it
 //! may reach within the tolerance, so no query can miss it.
 
-use super::plane_tree::{Crossing, SLACK};
+use crate::structure::plane_tree::{Crossing, SLACK};
 use crate::{Primitive, Ray, Vector};
 
 /// The tolerance of a signed distance, relative to the magnitudes summed to compute it: a few

@@ -13,7 +13,7 @@
 //! median of the centroids, perpendicular to their principal axis (PCA), splits instead.
 
 use super::plane::Plane;
-use super::plane_tree::share_budget;
+use crate::structure::plane_tree::share_budget;
 use crate::{Primitive, Vector};
 
 /// Scores are estimated on at most this many of the node's primitives, so that choosing a

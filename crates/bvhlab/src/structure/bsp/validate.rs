@@ -4,9 +4,9 @@
 use super::BspTree;
 use super::build::{DEPTH_LIMIT, bounds_of};
 use super::plane::Plane;
-use super::plane_tree::{PlaneNode, PlaneTree};
-use super::plane_tree_check::{check_coverage, check_layout, check_nesting};
 use crate::structure::ValidationError;
+use crate::structure::plane_tree::validate::{check_coverage, check_layout, check_nesting};
+use crate::structure::plane_tree::{PlaneNode, PlaneTree};
 use crate::volume::BoundingVolume;
 use crate::{Primitive, Vector as _};
 

@@ -71,64 +71,84 @@
 //! [`Bvh::lecture_min_distance_pruned_observed`] (pruned, still left then right). They give
 //! the same answers as the real traversals and report the same kinds of events.
 //!
-//! The folder follows parry's split by phase: [`tree`] (layout), `build` with
-//! `split_median` and `split_sah` (construction, whose decisions [`SplitRecord`] keeps),
-//! [`volume`] with `node_aabb`, `node_sphere` and `node_obb` (what a node volume answers,
-//! conservatively), `traverse_ray`, `traverse_nearest`, `traverse_range` and
-//! `traverse_collide` (queries), `fast_ray` and `fast_nearest` (the unobserved first hit and
-//! closest point), `lecture` (the slides' recursions), `stats` and `validate`, and `tests`.
+//! ## Where the code lives
 //!
-//! The plain [`ray_first_hit`](SpatialIndex::ray_first_hit) and
+//! One subfolder per job, as parry splits its BVH by phase:
+//!
+//! - [`layout`]: the tree and its node ([`Bvh`], [`BvhNode`]), their statistics
+//!   (`layout/stats.rs`), and the flat node and triangle arrays that the app's GPU heat map
+//!   reads ([`layout::gpu`], mirrored by WGSL in the app).
+//! - [`volume`]: what a node volume answers ([`NodeVolume`], [`PreparedRay`],
+//!   [`PreparedRange`]), one file per volume (`aabb.rs` with the slab test, `sphere.rs`,
+//!   `obb.rs`), and the node fits of a build run in slices (`fit_sliced/`).
+//! - `build/`: the options ([`BvhOptions`], `options.rs`), the lecture's median splits
+//!   (`median.rs`), the binned SAH (`sah.rs`), the builder whose node work runs in resumable
+//!   stages (`mod.rs`, `node_stages.rs`), the one-go box-tree build (`fast.rs`,
+//!   `fast_bins.rs`), the build in slices ([`BvhBuild`], `job.rs`) and the split log
+//!   ([`SplitRecord`], `split_log.rs`).
+//! - `walk/`: the queries, one file per job (`ray.rs`, `nearest.rs`, `range.rs`,
+//!   `collide.rs`), the unobserved first hit and closest point (`fast_ray.rs`,
+//!   `fast_nearest.rs`), the slides' recursions (`lecture.rs`) and the stack (`stack.rs`).
+//! - `wide/`: [`Bvh4`], the 4-wide copy of an AABB tree (`layout.rs`), with its own
+//!   first-hit and closest-point walks (`ray.rs`, `nearest.rs`) and stack (`stack.rs`).
+//! - `validate.rs` (the invariants) and `tests.rs` (unit tests that need private fields).
+//!
+//! ## Which walk each call runs
+//!
+//! | call | runs |
+//! | --- | --- |
+//! | [`ray_first_hit_observed`](SpatialIndex::ray_first_hit_observed) | `walk/ray.rs` (`first_hit`) |
+//! | [`ray_first_hit`](SpatialIndex::ray_first_hit) | `walk/fast_ray.rs`, a walk of its own |
+//! | [`ray_any_hit_observed`](SpatialIndex::ray_any_hit_observed), [`ray_any_hit`](SpatialIndex::ray_any_hit) | `walk/ray.rs` (`any_hit`) |
+//! | [`ray_all_hits_observed`](SpatialIndex::ray_all_hits_observed), [`ray_all_hits`](SpatialIndex::ray_all_hits) | `walk/ray.rs` (`all_hits`) |
+//! | [`closest_point`](SpatialIndex::closest_point), [`checked_closest_point`](SpatialIndex::checked_closest_point) | `walk/fast_nearest.rs`, a walk of its own |
+//! | [`k_nearest_observed`](SpatialIndex::k_nearest_observed), [`k_nearest`](SpatialIndex::k_nearest) (for every `k`, 1 too) | `walk/nearest.rs` |
+//! | [`range_observed`](SpatialIndex::range_observed), [`range`](SpatialIndex::range) | `walk/range.rs` |
+//! | [`collide_observed`](SpatialIndex::collide_observed), [`collide`](SpatialIndex::collide) | `walk/collide.rs` |
+//! | [`lecture_intersect_observed`](Bvh::lecture_intersect_observed), [`lecture_intersect`](Bvh::lecture_intersect) | `walk/lecture.rs` (`Intersect`) |
+//! | [`lecture_min_distance_observed`](Bvh::lecture_min_distance_observed), [`lecture_min_distance_pruned_observed`](Bvh::lecture_min_distance_pruned_observed) and their plain forms | `walk/lecture.rs` (`MinDistance`) |
+//! | [`Bvh4::ray_first_hit`] | `wide/ray.rs` |
+//! | [`Bvh4::closest_point`] | `wide/nearest.rs` |
+//! | [`stats`](SpatialIndex::stats), [`Bvh::depths`] | `layout/stats.rs` |
+//! | [`validate`](SpatialIndex::validate) | `validate.rs` |
+//! | [`Bvh::build`], [`Bvh::with_options`]: an AABB tree with [`SplitMethod::BinnedSah`] | `build/fast.rs`, in one go |
+//! | [`Bvh::build`], [`Bvh::with_options`]: any other tree; [`Bvh::build_observed`] | `build/mod.rs` and `node_stages.rs`, the resumable builder run to the end |
+//! | [`BvhBuild::step`], [`BvhBuild::finish`] | the same builder, a budget at a time (`build/job.rs`) |
+//! | [`Bvh4::build`], [`Bvh4::with_options`] | with the binned SAH `build/fast.rs`, then the collapse of `wide/layout.rs`; otherwise [`Bvh::with_options`] and [`Bvh4::from_bvh`] |
+//! | [`Bvh4::from_bvh`] | `wide/layout.rs` (the collapse) |
+//!
+//! Every plain form not named above is its `_observed` form with the no-op observer `()`
+//! (the defaults of [`SpatialIndex`]): the observer costs nothing there (`()`'s
+//! [`Observer::on`] is empty and always inlined), but the walk still keeps what its reports
+//! would need and counts its [`QueryCost`](super::QueryCost). Two plain forms do not: the
+//! plain [`ray_first_hit`](SpatialIndex::ray_first_hit) and
 //! [`closest_point`](SpatialIndex::closest_point), which nobody watches, take walks of their
-//! own that skip what only the lab needs (depths, counters, the order of reports): the
-//! nearer child is visited next without touching the stack, and only the farther waits.
-//! They answer exactly what the observed walks answer, bit for bit (the same node and
-//! primitive tests, and pruning that never skips a node the observed walk visits); the lab
-//! steps through the observed ones.
+//! own that skip what only the lab needs (each waiting node's depth, the counters, the order
+//! of reports, the k-best set): the nearer child is visited next without touching the stack,
+//! and only the farther waits. They answer exactly what the observed walks answer, bit for
+//! bit (the same node and primitive tests, and pruning that never skips a node the observed
+//! walk visits); the lab steps through the observed ones.
 //!
 //! For the fastest answers, [`Bvh4::from_bvh`] collapses a built AABB tree into a 4-wide copy
-//! (`wide_tree`: four children's boxes per node, tested at once in `wide_ray` and
-//! `wide_nearest`, with the stack of `wide_stack`) that answers the same first hits and
+//! (four children's boxes per node, tested at once) that answers the same first hits and
 //! closest points, bit for bit; the binary tree stays what the lab steps through.
 
 mod build;
-mod build_job;
-mod build_log;
-mod fast_nearest;
-mod fast_ray;
-mod fit_sliced;
-mod fit_sliced_obb;
-mod fit_sliced_sphere;
-mod lecture;
-mod node_aabb;
-mod node_obb;
-mod node_sphere;
-mod options;
-mod split_median;
-mod split_sah;
-mod stack;
-mod stats;
-mod traverse_collide;
-mod traverse_nearest;
-mod traverse_range;
-mod traverse_ray;
-pub mod tree;
+pub mod layout;
 mod validate;
 pub mod volume;
-mod wide_nearest;
-mod wide_ray;
-mod wide_stack;
-mod wide_tree;
+mod walk;
+mod wide;
 
 #[cfg(test)]
 mod tests;
 
-pub use build_job::{BuildPhase, BuildProgress, BvhBuild};
-pub use build_log::SplitRecord;
-pub use options::{BvhOptions, MAX_DEPTH, SphereFit, SplitMethod};
-pub use tree::{Bvh, BvhNode};
+pub use build::job::{BuildPhase, BuildProgress, BvhBuild};
+pub use build::options::{BvhOptions, MAX_DEPTH, SphereFit, SplitMethod};
+pub use build::split_log::SplitRecord;
+pub use layout::{Bvh, BvhNode};
 pub use volume::{NodeVolume, PreparedRange, PreparedRay, SLACK, TINY};
-pub use wide_tree::{Bvh4, Bvh4Node, WIDTH};
+pub use wide::{Bvh4, Bvh4Node, WIDTH};
 
 use super::{
     Hit, Nearest, Observer, PointOf, RangeShape, SpatialIndex, Stats, Traced, ValidationError,
@@ -201,13 +221,14 @@ where
         self.first_hit(ray, t_max, observer)
     }
 
-    /// The unobserved walk (`fast_ray`): the observed one's answer, without its bookkeeping.
+    /// The unobserved walk (`walk/fast_ray.rs`): the observed one's answer, without its
+    /// bookkeeping.
     #[inline]
     fn ray_first_hit(&self, ray: &Ray<PointOf<Self>>, t_max: f32) -> Option<Hit> {
         self.first_hit_fast(ray, t_max)
     }
 
-    /// The unobserved walk (`fast_nearest`): the observed one's answer, without its
+    /// The unobserved walk (`walk/fast_nearest.rs`): the observed one's answer, without its
     /// bookkeeping.
     #[inline]
     fn closest_point(&self, point: PointOf<Self>) -> Option<Nearest<PointOf<Self>>> {

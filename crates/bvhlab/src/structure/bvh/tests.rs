@@ -4,7 +4,7 @@
 use glam::{Vec2, Vec3};
 use rand::{RngExt, SeedableRng};
 
-use super::stack::{Entry, Stack};
+use super::walk::stack::{Entry, Stack};
 use super::{Bvh, BvhNode, NodeVolume, PreparedRay};
 use crate::structure::SpatialIndex;
 use crate::volume::{Aabb, Obb, Sphere};

@@ -1,7 +1,7 @@
 //! Well-formedness: topology, primitive bookkeeping, and every volume around its primitives
 //! (parry's `bvh_validation.rs` checks the same for its trees).
 
-use super::tree::is_indexable;
+use super::layout::is_indexable;
 use super::volume::NodeVolume;
 use super::{Bvh, MAX_DEPTH};
 use crate::Primitive;

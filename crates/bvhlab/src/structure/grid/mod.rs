@@ -3,13 +3,15 @@
 //! - [`layout`]: the [`Grid`] and its [`GridOptions`]; cells in compressed sparse rows.
 //! - [`resolution`]: how many cells (Cleary and Wyvill's rule), and where their boundaries lie.
 //! - [`build`]: each primitive listed in exactly the cells it touches.
-//! - [`dda`]: the conservative cell walk along a ray (Amanatides and Woo).
-//! - [`ray_query`]: first hit, any hit, all hits, with mailboxing.
+//! - [`ray`]: first hit, any hit, all hits, with mailboxing, over the cells that [`dda`]
+//!   walks.
+//! - [`dda`]: the conservative cell walk along a ray (Amanatides and Woo's 3D-DDA).
 //! - [`nearest`]: k nearest, searching outward from the query point's cell.
-//! - [`range_collide`]: range and grid-against-grid collision.
+//! - [`range`]: the primitives in a range.
+//! - [`collide`]: grid-against-grid collision.
 //! - [`validate`]: invariants and statistics.
 //! - `tolerance` and `probe` (crate-private): the rounding tolerances and the per-query
-//!   bookkeeping that the grid and the 2^D tree ([`super::octree`]) share.
+//!   bookkeeping that the grid and the quadtree/octree ([`super::quadtree`]) share.
 //!
 //! Query events (their order is written as a grammar in
 //! [`observe`](crate::structure::observe#the-order-of-events)): ray queries report
@@ -35,12 +37,13 @@
 //! [`Event::PairTest`]: crate::Event::PairTest
 
 pub mod build;
+pub mod collide;
 pub mod dda;
 pub mod layout;
 pub mod nearest;
 pub(crate) mod probe;
-pub mod range_collide;
-pub mod ray_query;
+pub mod range;
+pub mod ray;
 pub mod resolution;
 pub(crate) mod tolerance;
 pub mod validate;

@@ -6,30 +6,27 @@
 //! centres (Bentley 1975), or the surface area heuristic with pbrt-v3's cost model over sorted
 //! edge events (Wald and Havran 2006).
 //!
-//! A k-d tree is a BSP tree whose planes are axis-aligned, so its queries are the BSP tree's
-//! ([`super::bsp::plane_tree`]): this type only says how a ray crosses an axis-aligned plane,
-//! with one coordinate of the ray and its precomputed `1/d` (the fast path of Havran's and
-//! pbrt's traversal), and that a child's region is its parent's cell cut at the plane.
+//! A k-d tree is a BSP tree whose planes are axis-aligned, so its queries are the BSP tree's,
+//! in [`super::plane_tree`] (the k-d traversal is [`plane_tree::ray`]): this type only says
+//! how a ray crosses an axis-aligned plane, with one coordinate of the ray and its
+//! precomputed `1/d` (the fast path of Havran's and pbrt's traversal), and that a child's
+//! region is its parent's cell cut at the plane.
 //!
-//! Files: [`layout`] (the 8-byte node), [`options`], [`build`] (shared by the builders),
-//! [`build_median`], [`build_sah`] with [`sah_events`], and [`validate`].
+//! Files: [`layout`] (the 8-byte node), [`options`], [`build`] (what both builders share)
+//! with the median builder ([`build::median`]) and the SAH builder ([`build::sah`], over
+//! the sorted edge events of [`build::sah_events`]), and [`validate`]. The queries are in
+//! [`super::plane_tree`].
 
 pub mod build;
-pub mod build_median;
-pub mod build_sah;
 pub mod layout;
 pub mod options;
-pub mod sah_events;
 pub mod validate;
 
 pub use layout::{KdNode, KdNodeView};
 pub use options::{AxisRule, KdBuilder, KdTreeOptions, SahCosts};
 
 use self::build::{Builder, split_cell};
-use super::bsp::plane_tree::{Crossing, PlaneNode, PlaneTree, SLACK, axis_crossing, magnitude};
-use super::bsp::{
-    plane_tree_check, traverse_collide, traverse_nearest, traverse_range, traverse_ray,
-};
+use super::plane_tree::{self, Crossing, PlaneNode, PlaneTree, SLACK, axis_crossing, magnitude};
 use super::{
     Hit, Nearest, NodeId, Observer, RangeShape, SpatialIndex, Stats, Traced, ValidationError,
 };
@@ -87,12 +84,13 @@ impl<P: Primitive> KdTree<P> {
             let at = build::Subtree::root(root_cell, refs.len());
             match options.builder {
                 KdBuilder::Median(rule) => {
-                    build_median::build_median(&mut builder, rule, refs, at);
+                    build::median::build_median(&mut builder, rule, refs, at);
                 }
                 KdBuilder::Sah(costs) => {
-                    let (mut arena, events) = sah_events::EventArena::new(&refs, &builder.bounds);
+                    let (mut arena, events) =
+                        build::sah_events::EventArena::new(&refs, &builder.bounds);
                     drop(refs);
-                    build_sah::build_sah(&mut builder, &mut arena, &costs, events, at, 0);
+                    build::sah::build_sah(&mut builder, &mut arena, &costs, events, at, 0);
                 }
             }
         }
@@ -238,7 +236,7 @@ impl<P: Primitive> SpatialIndex for KdTree<P> {
         t_max: f32,
         observer: &mut O,
     ) -> Traced<Option<Hit>> {
-        traverse_ray::first_hit(self, ray, t_max, observer)
+        plane_tree::ray::first_hit(self, ray, t_max, observer)
     }
 
     fn ray_any_hit_observed<O: Observer<P::Point>>(
@@ -247,7 +245,7 @@ impl<P: Primitive> SpatialIndex for KdTree<P> {
         t_max: f32,
         observer: &mut O,
     ) -> Traced<Option<Hit>> {
-        traverse_ray::any_hit(self, ray, t_max, observer)
+        plane_tree::ray::any_hit(self, ray, t_max, observer)
     }
 
     fn ray_all_hits_observed<O: Observer<P::Point>>(
@@ -256,7 +254,7 @@ impl<P: Primitive> SpatialIndex for KdTree<P> {
         t_max: f32,
         observer: &mut O,
     ) -> Traced<Vec<Hit>> {
-        traverse_ray::all_hits(self, ray, t_max, observer)
+        plane_tree::ray::all_hits(self, ray, t_max, observer)
     }
 
     fn k_nearest_observed<O: Observer<P::Point>>(
@@ -265,7 +263,7 @@ impl<P: Primitive> SpatialIndex for KdTree<P> {
         k: usize,
         observer: &mut O,
     ) -> Traced<Vec<Nearest<P::Point>>> {
-        traverse_nearest::k_nearest(self, point, k, observer)
+        plane_tree::nearest::k_nearest(self, point, k, observer)
     }
 
     fn range_observed<O: Observer<P::Point>>(
@@ -273,7 +271,7 @@ impl<P: Primitive> SpatialIndex for KdTree<P> {
         shape: &RangeShape<P::Point>,
         observer: &mut O,
     ) -> Traced<Vec<usize>> {
-        traverse_range::range(self, shape, observer)
+        plane_tree::range::range(self, shape, observer)
     }
 
     fn collide_observed<O: Observer<P::Point>>(
@@ -281,7 +279,7 @@ impl<P: Primitive> SpatialIndex for KdTree<P> {
         other: &Self,
         observer: &mut O,
     ) -> Traced<Vec<(usize, usize)>> {
-        traverse_collide::collide(self, other, observer)
+        plane_tree::collide::collide(self, other, observer)
     }
 
     /// The SAH cost is that of the cells.
@@ -289,7 +287,7 @@ impl<P: Primitive> SpatialIndex for KdTree<P> {
         let memory = self.nodes.len() * size_of::<KdNode>()
             + self.indices.len() * size_of::<u32>()
             + self.prims.len() * size_of::<P>();
-        plane_tree_check::plane_tree_stats(self, memory)
+        plane_tree::validate::plane_tree_stats(self, memory)
     }
 
     fn validate(&self) -> Result<(), ValidationError> {

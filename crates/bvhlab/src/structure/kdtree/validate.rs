@@ -5,8 +5,8 @@ use super::KdTree;
 use super::build::{DEPTH_LIMIT, is_finite_box};
 use super::layout::KdNode;
 use crate::structure::ValidationError;
-use crate::structure::bsp::plane_tree::PlaneTree as _;
-use crate::structure::bsp::plane_tree_check::{check_coverage, check_layout, check_nesting};
+use crate::structure::plane_tree::PlaneTree as _;
+use crate::structure::plane_tree::validate::{check_coverage, check_layout, check_nesting};
 use crate::volume::{Aabb, BoundingVolume};
 use crate::{Primitive, Vector};
 

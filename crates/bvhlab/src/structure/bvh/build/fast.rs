@@ -12,7 +12,7 @@
 //!
 //! Only box trees qualify: a sphere or OBB node is fitted to the vertices below it, which the
 //! resumable builder gathers per node anyway. The decisions are the same in the same order
-//! (the binned costs of `split_sah`, computed as there by [`fast_bins`](super::fast_bins),
+//! (the binned costs of `sah.rs`, computed as there by [`fast_bins`](super::fast_bins),
 //! over the same primitives in the same order; the same partition; the same object
 //! median), and a box's union is the same whatever the order of
 //! its merges (minimum and maximum of finite numbers; a `-0.0` against a `0.0` is the one
@@ -23,8 +23,8 @@
 
 use super::BuildPrim;
 use super::fast_bins::{AxisBins, Binner, Cheapest, LaneBox, lanes};
-use crate::structure::bvh::split_median::object_median;
-use crate::structure::bvh::tree::{BvhNode, is_indexable};
+use super::median::object_median;
+use crate::structure::bvh::layout::{BvhNode, is_indexable};
 use crate::structure::bvh::volume::NodeVolume;
 use crate::structure::bvh::{Bvh, BvhOptions};
 use crate::{Primitive, Vector};

@@ -1,5 +1,5 @@
 //! The SAH binning of the one-go build ([`fast`](super::fast)) in four-lane boxes: the
-//! decisions of [`SahBinning`](crate::structure::bvh::split_sah::SahBinning) (Wald 2007;
+//! decisions of [`SahBinning`](super::sah::SahBinning) (Wald 2007;
 //! pbrt-v4 §7.3.2), computed the same way, on boxes whose merge is one vector minimum and
 //! one vector maximum.
 //!
@@ -10,8 +10,8 @@
 
 use glam::Vec4;
 
+use super::sah::MAX_BINS;
 use crate::Vector;
-use crate::structure::bvh::split_sah::MAX_BINS;
 use crate::volume::Aabb;
 
 /// A box in four lanes (`x`, `y`, `z`, and a lane that stays 0; `z` is 0 in 2D).
@@ -45,7 +45,7 @@ impl LaneBox {
         }
     }
 
-    /// `split_sah`'s `half_area`: half the surface area (3D) or half the perimeter (2D),
+    /// `sah.rs`'s `half_area`: half the surface area (3D) or half the perimeter (2D),
     /// from the `f32` side lengths, in `f64`.
     #[inline]
     pub fn half_area<V: Vector>(&self) -> f64 {
@@ -99,7 +99,7 @@ pub(super) struct AxisBins {
 
 impl AxisBins {
     /// The bin of a centre coordinate; NaN and out-of-range values are clamped into range
-    /// (`split_sah`'s `as usize` then `min`: the same bin, through a cheaper conversion).
+    /// (`sah.rs`'s `as usize` then `min`: the same bin, through a cheaper conversion).
     /// `bins` is at most [`MAX_BINS`], so the mask only tells the compiler the index fits.
     #[inline]
     pub fn bin_of(&self, coord: f32) -> usize {

@@ -5,14 +5,14 @@
 //! Each stage takes the node's state by value and returns the next stage: the same stage
 //! with its position when the budget ran out, the following one when it is finished.
 
+use super::median::{object_median, spatial_median_plane};
+use super::sah::{SahBinning, SahCurve};
+use super::split_log::SplitRecord;
 use super::{Budget, BuildPrim, Builder, Cut, Fits, NodeWork, Pending, Split, Stage};
 use crate::structure::bvh::SplitMethod;
-use crate::structure::bvh::build_log::SplitRecord;
-use crate::structure::bvh::fit_sliced::SlicedFit;
-use crate::structure::bvh::split_median::{object_median, spatial_median_plane};
-use crate::structure::bvh::split_sah::{SahBinning, SahCurve};
-use crate::structure::bvh::tree::BvhNode;
+use crate::structure::bvh::layout::BvhNode;
 use crate::structure::bvh::volume::NodeVolume;
+use crate::structure::bvh::volume::fit_sliced::SlicedFit;
 use crate::structure::{Event, NodeId, Observer};
 use crate::volume::BoundingVolume;
 use crate::{Primitive, Vector};

@@ -1,0 +1,265 @@
+//! A 4-wide copy of a built AABB tree, for the fastest unobserved queries.
+//!
+//! The binary tree is what the lab steps through: its nodes, ids and events stay as they
+//! are. A caller that only wants answers can collapse it into [`Bvh4`], whose nodes hold up
+//! to four children's boxes side by side, one array per coordinate (structure of arrays),
+//! so that one slab test checks four boxes with four-lane arithmetic (Wald, Benthin and
+//! Boulos, "Getting Rid of Packets", IRT 2008; Dammertz, Hanika and Keller, "Shallow
+//! Bounding Volume Hierarchies for Fast SIMD Ray Tracing of Incoherent Rays", EGSR 2008).
+//! A walk then meets a quarter to a half of the binary tree's levels, and the four boxes it
+//! tests at once share two cache lines instead of lying in two nodes each.
+//!
+//! The collapse keeps the binary tree's boxes (each fitted with its slack, so every
+//! conservative argument of [`volume`] still holds) and its leaves; it only
+//! removes inner levels: a wide node's lanes are the binary node's children, and while there
+//! are fewer than four, the inner lane with the largest surface area is replaced by its two
+//! children (the greedy rule of Wald et al.), which opens the boxes most rays enter.
+//!
+//! [`volume`]: crate::structure::bvh::volume
+
+use crate::structure::bvh::build::build_sah_box_parts;
+use crate::structure::bvh::layout::BvhNode;
+use crate::structure::bvh::{Bvh, BvhOptions, SplitMethod};
+use crate::volume::{Aabb, BoundingVolume};
+use crate::{Primitive, Vector};
+
+/// Children per wide node.
+pub const WIDTH: usize = 4;
+
+/// One node of a [`Bvh4`]: up to four children's boxes in structure-of-arrays form, and where
+/// each child is.
+///
+/// 128 bytes, aligned to a 64-byte cache line, so a node is exactly two lines:
+///
+/// ```text
+/// offset   0  planes[0]  3 × [f32; 4]   per axis, the four children's lower planes (min)
+/// offset  48  planes[1]  3 × [f32; 4]   per axis, their upper planes (max)
+/// offset  96  child      [u32; 4]       inner child: its wide node; leaf child: first primitive
+/// offset 112  count      [u32; 4]       leaf child: primitive count (>= 1); inner child: 0
+/// ```
+///
+/// An unused lane has the empty box (`min = +inf`, `max = -inf`), which every slab test
+/// misses and every distance bound puts at infinity; in 2D the third axis is unused.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[repr(C, align(64))]
+pub struct Bvh4Node {
+    /// `planes[0][axis][lane]`: the lower planes of the children's boxes (their `min`);
+    /// `planes[1][axis][lane]`: the upper ones (`max`). One array, so that the ray test
+    /// picks the plane it enters through by an index computed once per ray.
+    pub planes: [[[f32; WIDTH]; 3]; 2],
+    /// Per lane: an inner child's wide node index, or a leaf child's first primitive (leaf
+    /// order).
+    pub child: [u32; WIDTH],
+    /// Per lane: a leaf child's primitive count (at least 1), or 0 for an inner child or an
+    /// unused lane.
+    pub count: [u32; WIDTH],
+}
+
+const _: () = assert!(size_of::<Bvh4Node>() == 128);
+
+impl Bvh4Node {
+    /// A node with every lane unused.
+    const EMPTY: Self = Self {
+        planes: [[[f32::INFINITY; WIDTH]; 3], [[f32::NEG_INFINITY; WIDTH]; 3]],
+        child: [0; WIDTH],
+        count: [0; WIDTH],
+    };
+
+    /// Whether lane `lane` holds a child (leaf or inner).
+    pub fn is_used(&self, lane: usize) -> bool {
+        self.count[lane] > 0 || self.planes[0][0][lane] <= self.planes[1][0][lane]
+    }
+
+    /// The box of lane `lane` (empty for an unused lane).
+    pub fn lane_box<V: Vector>(&self, lane: usize) -> Aabb<V> {
+        let (mut min, mut max) = (V::ZERO, V::ZERO);
+        for axis in 0..V::DIM {
+            min.set_coord(axis, self.planes[0][axis][lane]);
+            max.set_coord(axis, self.planes[1][axis][lane]);
+        }
+        Aabb::new(min, max)
+    }
+
+    fn set_lane<V: Vector>(&mut self, lane: usize, volume: &Aabb<V>) {
+        for axis in 0..V::DIM {
+            self.planes[0][axis][lane] = volume.min.coord(axis);
+            self.planes[1][axis][lane] = volume.max.coord(axis);
+        }
+    }
+}
+
+/// A 4-wide AABB tree collapsed from a built [`AabbTree`], answering
+/// [`ray_first_hit`](Self::ray_first_hit) and [`closest_point`](Self::closest_point) exactly
+/// as the binary tree (and brute force) does, bit for bit, but faster. It holds its own copy
+/// of the primitives in leaf order, so the binary tree can be dropped.
+///
+/// ```
+/// use bvhlab::glam::Vec3;
+/// use bvhlab::prelude::*;
+/// use bvhlab::structure::bvh::Bvh4;
+///
+/// let tris: Vec<Triangle3> = (0..10)
+///     .map(|i| {
+///         let z = i as f32;
+///         Triangle3::new(Vec3::new(0.0, 0.0, z), Vec3::new(4.0, 0.0, z), Vec3::new(0.0, 4.0, z))
+///     })
+///     .collect();
+/// let tree = AabbTree3::build(&tris);
+/// let wide = Bvh4::from_bvh(&tree);
+/// let down = Ray3::new(Vec3::new(1.0, 1.0, 20.0), -Vec3::Z)?;
+/// assert_eq!(wide.ray_first_hit(&down, f32::INFINITY), tree.ray_first_hit(&down, f32::INFINITY));
+/// assert_eq!(wide.ray_first_hit(&down, f32::INFINITY).map(|h| h.prim), Some(9));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+///
+/// [`AabbTree`]: crate::structure::bvh::AabbTree
+#[derive(Clone, Debug, PartialEq)]
+pub struct Bvh4<P: Primitive> {
+    /// Wide nodes; the root is node 0 (when any primitive is indexed). Each node's inner
+    /// children are contiguous.
+    pub(super) nodes: Vec<Bvh4Node>,
+    /// The indexed primitives in the binary tree's leaf order.
+    pub(super) leaf_prims: Vec<P>,
+    /// `leaf_ids[i]` is the input index of `leaf_prims[i]`.
+    pub(super) leaf_ids: Vec<u32>,
+    /// Wide levels from the root to the deepest node (1 for a root alone, 0 when empty):
+    /// it sizes the walks' stacks.
+    pub(super) depth: usize,
+}
+
+impl<P: Primitive> Bvh4<P> {
+    /// Builds the binned-SAH AABB tree over `prims` with the default options and collapses
+    /// it.
+    pub fn build(prims: &[P]) -> Self {
+        Self::with_options(prims, &BvhOptions::default())
+    }
+
+    /// Builds the AABB tree over `prims` with `options` and collapses it: the tree
+    /// `Bvh4::from_bvh(&AabbTree::with_options(prims, options))` makes, without the binary
+    /// tree's copies of the input and of the leaf order.
+    pub fn with_options(prims: &[P], options: &BvhOptions) -> Self {
+        if options.method != SplitMethod::BinnedSah {
+            return Self::from_bvh(&Bvh::with_options(prims, options));
+        }
+        let parts = build_sah_box_parts::<Aabb<P::Point>, P>(prims, options);
+        let (nodes, depth) = collapse(&parts.nodes);
+        Self {
+            nodes,
+            leaf_prims: parts.leaf_prims,
+            leaf_ids: parts.leaf_ids,
+            depth,
+        }
+    }
+
+    /// Collapses a built AABB tree (its boxes, leaves and primitives are kept; only inner
+    /// levels go).
+    pub fn from_bvh(bvh: &Bvh<Aabb<P::Point>, P>) -> Self {
+        let (nodes, depth) = collapse(&bvh.nodes);
+        Self {
+            nodes,
+            leaf_prims: bvh.leaf_prims.clone(),
+            leaf_ids: bvh.leaf_ids.clone(),
+            depth,
+        }
+    }
+
+    /// The wide nodes; the root is node 0.
+    pub fn nodes(&self) -> &[Bvh4Node] {
+        &self.nodes
+    }
+
+    /// How many primitives are indexed.
+    pub fn len(&self) -> usize {
+        self.leaf_ids.len()
+    }
+
+    /// Whether no primitive is indexed.
+    pub fn is_empty(&self) -> bool {
+        self.leaf_ids.is_empty()
+    }
+
+    /// The heap memory it holds: nodes, primitives and their ids.
+    pub fn memory_bytes(&self) -> usize {
+        self.nodes.capacity() * size_of::<Bvh4Node>()
+            + self.leaf_prims.capacity() * size_of::<P>()
+            + self.leaf_ids.capacity() * size_of::<u32>()
+    }
+
+    /// Wide levels from the root to the deepest node (0 when empty).
+    pub fn depth(&self) -> usize {
+        self.depth
+    }
+
+    /// The bytes of its nodes alone.
+    pub fn node_bytes(&self) -> usize {
+        self.nodes.len() * size_of::<Bvh4Node>()
+    }
+
+    /// The average number of used lanes per node (at most [`WIDTH`]).
+    pub fn mean_fill(&self) -> f32 {
+        let used: usize = self
+            .nodes
+            .iter()
+            .map(|n| (0..WIDTH).filter(|&lane| n.is_used(lane)).count())
+            .sum();
+        used as f32 / self.nodes.len().max(1) as f32
+    }
+}
+
+/// The wide nodes of a binary tree (depth-first from the root, each node's inner children
+/// given consecutive indices when the node is made), and their depth.
+fn collapse<V: Vector>(binary: &[BvhNode<Aabb<V>>]) -> (Vec<Bvh4Node>, usize) {
+    let Some(root) = binary.first() else {
+        return (Vec::new(), 0);
+    };
+    let mut nodes = vec![Bvh4Node::EMPTY];
+    // A leaf root becomes a wide root with one leaf lane.
+    let root_lanes = if root.is_leaf() {
+        vec![0]
+    } else {
+        lanes_of(binary, 0)
+    };
+    let mut waiting = vec![(0usize, 1usize, root_lanes)];
+    let mut depth = 0;
+    while let Some((index, level, lanes)) = waiting.pop() {
+        depth = depth.max(level);
+        let mut node = Bvh4Node::EMPTY;
+        for (lane, &id) in lanes.iter().enumerate() {
+            let b = &binary[id as usize];
+            node.set_lane(lane, &b.volume);
+            if b.is_leaf() {
+                (node.child[lane], node.count[lane]) = (b.start, b.count);
+            } else {
+                let child = nodes.len();
+                nodes.push(Bvh4Node::EMPTY);
+                node.child[lane] = u32::try_from(child).unwrap_or(u32::MAX);
+                waiting.push((child, level + 1, lanes_of(binary, id)));
+            }
+        }
+        nodes[index] = node;
+    }
+    (nodes, depth)
+}
+
+/// The binary nodes that become the lanes of the wide node made for inner node `id`: its two
+/// children, then, while there are fewer than [`WIDTH`], the inner one with the largest
+/// surface area replaced by its two children (in place, so lanes keep the binary tree's
+/// left-to-right order).
+fn lanes_of<V: Vector>(binary: &[BvhNode<Aabb<V>>], id: u32) -> Vec<u32> {
+    let children = |id: u32| (id + 1, binary[id as usize].start);
+    let (first, second) = children(id);
+    let mut lanes = vec![first, second];
+    while lanes.len() < WIDTH {
+        let widest = lanes
+            .iter()
+            .enumerate()
+            .filter(|&(_, &lane)| !binary[lane as usize].is_leaf())
+            .map(|(i, &lane)| (i, binary[lane as usize].volume.boundary_measure()))
+            .reduce(|a, b| if b.1 > a.1 { b } else { a });
+        let Some((i, _)) = widest else { break };
+        let (first, second) = children(lanes[i]);
+        lanes[i] = first;
+        lanes.insert(i + 1, second);
+    }
+    lanes
+}

@@ -1,0 +1,164 @@
+//! The first hit in a [`Bvh4`]: one slab test for four boxes, then the boxes the ray enters,
+//! nearest entry first.
+//!
+//! The four-lane test is the binary walk's slab test ([`NodeVolume::ray_entry`] of
+//! [`Aabb`](crate::Aabb)) written over fixed-size arrays, one lane per child, so that the
+//! compiler turns each line into one vector instruction (SSE natively, SIMD128 in
+//! WebAssembly) and no `unsafe` is needed: per lane the same operations on the same values,
+//! so the same entry `t` as the binary tree's test of that box.
+//!
+//! The answer is the binary walks' (fast and observed), bit for bit: the same boxes, the same
+//! primitive test and the same pruning rule (a child is skipped only when the ray misses its
+//! box or enters it beyond the best hit times [`GROW`]), and the best hit is the least
+//! `(t, index)` over every primitive not pruned, whatever the order they are met in
+//! ([`HitTracker`]).
+//!
+//! [`NodeVolume::ray_entry`]: crate::structure::bvh::NodeVolume::ray_entry
+
+use crate::structure::bvh::MAX_DEPTH;
+use glam::Vec4;
+
+use super::layout::{Bvh4, Bvh4Node, WIDTH};
+use super::stack::{Lane, MIDDLE_DEPTH, SHALLOW_DEPTH, capacity, visit_nearest};
+use crate::structure::bvh::volume::{GROW, PreparedRay};
+use crate::structure::{Hit, HitTracker};
+use crate::{Primitive, Ray, Vector};
+
+/// The ray as the four-lane test reads it: per axis, the slack-shifted origins and the
+/// inverse direction, and which planes it enters through (1, the `max` planes, where the
+/// direction is negative).
+struct LaneRay {
+    origin_near: [f32; 3],
+    origin_far: [f32; 3],
+    inv_dir: [f32; 3],
+    entry_planes: [usize; 3],
+}
+
+impl LaneRay {
+    fn new<V: Vector>(prepared: &PreparedRay<V>) -> Self {
+        let (mut origin_near, mut origin_far, mut inv_dir) = ([0.0; 3], [0.0; 3], [0.0; 3]);
+        for axis in 0..V::DIM {
+            origin_near[axis] = prepared.origin_near.coord(axis);
+            origin_far[axis] = prepared.origin_far.coord(axis);
+            inv_dir[axis] = prepared.inv_dir.coord(axis);
+        }
+        Self {
+            origin_near,
+            origin_far,
+            inv_dir,
+            entry_planes: prepared.negative.map(usize::from),
+        }
+    }
+}
+
+/// The slab test of the four children's boxes: per lane the entry `t`, and a bit set for each
+/// lane whose box the ray enters no later than `limit_grown`.
+///
+/// Line for line the scalar test: `>` and `<` with the running value second skip a NaN plane
+/// (a ray lying in it), which is what SSE's `maxps`/`minps` do with their operands in this
+/// order.
+#[expect(
+    clippy::inline_always,
+    reason = "the hot step of the walk: left out of line it costs a call per node (measured)"
+)]
+#[inline(always)]
+fn enter_lanes<const DIM: usize>(
+    node: &Bvh4Node,
+    ray: &LaneRay,
+    limit_grown: f32,
+) -> ([f32; WIDTH], u32) {
+    let mut t_enter = [0.0f32; WIDTH];
+    let mut t_exit = [f32::INFINITY; WIDTH];
+    for axis in 0..DIM {
+        let entry = ray.entry_planes[axis] & 1;
+        let (near, far) = (&node.planes[entry][axis], &node.planes[entry ^ 1][axis]);
+        let (o_near, o_far, inv) = (
+            ray.origin_near[axis],
+            ray.origin_far[axis],
+            ray.inv_dir[axis],
+        );
+        for lane in 0..WIDTH {
+            let t_near = (near[lane] - o_near) * inv;
+            let t_far = (far[lane] - o_far) * inv;
+            t_enter[lane] = if t_near > t_enter[lane] {
+                t_near
+            } else {
+                t_enter[lane]
+            };
+            t_exit[lane] = if t_far < t_exit[lane] {
+                t_far
+            } else {
+                t_exit[lane]
+            };
+        }
+    }
+    // The lanes' verdicts as a bit mask: glam's four-lane compare and `bitmask` (one
+    // `movmskps` with SSE), which the compiler does not find from a loop over the lanes
+    // when AVX-512 is enabled (it shifts mask registers lane by lane).
+    let enter = Vec4::from_array(t_enter);
+    let enters =
+        enter.cmple(Vec4::from_array(t_exit) * GROW) & enter.cmple(Vec4::splat(limit_grown));
+    let mask = enters.bitmask();
+    (t_enter, mask)
+}
+
+impl<P: Primitive> Bvh4<P> {
+    /// The first hit with `0 <= t <= t_max` (none for a NaN `t_max`), ties broken by the
+    /// lower primitive index: what the binary tree's
+    /// [`ray_first_hit`](crate::structure::SpatialIndex::ray_first_hit) answers, bit for bit.
+    pub fn ray_first_hit(&self, ray: &Ray<P::Point>, t_max: f32) -> Option<Hit> {
+        if self.nodes.is_empty() || t_max.is_nan() {
+            return None;
+        }
+        if self.depth <= SHALLOW_DEPTH {
+            self.first_hit_walk::<{ capacity(SHALLOW_DEPTH) }>(ray, t_max)
+        } else if self.depth <= MIDDLE_DEPTH {
+            self.first_hit_walk::<{ capacity(MIDDLE_DEPTH) }>(ray, t_max)
+        } else {
+            self.first_hit_walk::<{ capacity(MAX_DEPTH + 1) }>(ray, t_max)
+        }
+    }
+
+    /// The walk, with a stack of `CAP` entries (enough for the tree's depth).
+    fn first_hit_walk<const CAP: usize>(&self, ray: &Ray<P::Point>, t_max: f32) -> Option<Hit> {
+        let prepared = PreparedRay::new(ray);
+        let lanes = LaneRay::new(&prepared);
+        let mut best = HitTracker::new(t_max);
+        // `best.limit()`, kept in a local so that the hot loop reads a register.
+        let mut limit = t_max;
+        let mut stack = [Lane::ROOT; CAP];
+        let mut len = 0;
+        let mut current = Lane::ROOT;
+        loop {
+            if current.count > 0 {
+                let range = current.child as usize..(current.child + current.count) as usize;
+                if best.offer_leaf(&self.leaf_prims[range.clone()], &self.leaf_ids[range], ray) {
+                    limit = best.limit();
+                }
+            } else {
+                let node = &self.nodes[current.child as usize];
+                let (t_enter, mask) = if P::Point::DIM == 3 {
+                    enter_lanes::<3>(node, &lanes, limit * GROW)
+                } else {
+                    enter_lanes::<2>(node, &lanes, limit * GROW)
+                };
+                if mask != 0 {
+                    current = visit_nearest(node, mask, &t_enter, &mut stack, &mut len);
+                    continue;
+                }
+            }
+            // Pop the next waiting child the best hit has not moved in front of.
+            loop {
+                if len == 0 {
+                    return best.best();
+                }
+                len -= 1;
+                let waiting = stack[len];
+                if waiting.key <= limit * GROW {
+                    current = waiting;
+                    break;
+                }
+            }
+        }
+    }
+}
