@@ -22,9 +22,10 @@ pub enum BoxGrip {
 }
 
 /// A drag or drawing in progress.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub enum Interaction {
     /// Nothing.
+    #[default]
     None,
     /// A segment from this point to the pointer.
     Segment(Vec2),
@@ -40,10 +41,4 @@ pub enum Interaction {
     Point,
     /// Dragging a box of the separating-axis demo.
     Box(BoxGrip),
-}
-
-impl Default for Interaction {
-    fn default() -> Self {
-        Self::None
-    }
 }

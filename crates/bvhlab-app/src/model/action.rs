@@ -119,7 +119,7 @@ pub enum Action3d {
 }
 
 /// A change of the structures, question or playback of the half shown.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub enum HalfAction {
     /// The structure and its build options.
     SetStructure(BuildSettings),

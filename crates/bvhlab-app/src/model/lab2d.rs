@@ -202,6 +202,59 @@ impl Lab2d {
                 return Ok(Note::Clear);
             }
             Action2d::LoadPreset(preset) => self.load_preset(preset),
+            Action2d::Clear
+            | Action2d::AddShape { .. }
+            | Action2d::AddToCloud { .. }
+            | Action2d::Select(_)
+            | Action2d::MoveSelection(_)
+            | Action2d::DeleteSelection => return self.edit_scene(action),
+            Action2d::SetCamera(camera) => {
+                if !camera.is_valid() {
+                    return Err(format!(
+                        "the view's centre {} and scale {} are out of range",
+                        camera.center, camera.scale
+                    ));
+                }
+                self.camera = camera;
+            }
+            Action2d::FrameScene(size) => {
+                if let Some((lo, hi)) = self.scene.bounds()
+                    && let Some(camera) = Camera2d::framing(lo, hi, size)
+                {
+                    self.camera = camera;
+                }
+                self.fit_pending = false;
+            }
+            Action2d::SetRay(handles) => {
+                if let Some(h) = handles
+                    && !(h.origin.is_finite() && h.target.is_finite())
+                {
+                    return Err("the ray's handles must be finite points".to_owned());
+                }
+                self.ray = handles;
+                if handles.is_some() {
+                    self.half.ask_about_ray();
+                }
+            }
+            Action2d::SetPoint(point) => {
+                if point.is_some_and(|p| !p.is_finite()) {
+                    return Err("the query point must be a finite point".to_owned());
+                }
+                self.point = point;
+                if point.is_some() {
+                    self.half.ask_about_point();
+                }
+            }
+            Action2d::SetDisplay(display) => self.display = display,
+            Action2d::SetVolumes(volumes) => self.volumes = volumes,
+            Action2d::SetObbPair(pair) => self.obb_pair = Some(pair),
+        }
+        Ok(Note::Keep)
+    }
+
+    /// The scene's edits: adding, moving, selecting, deleting shapes.
+    fn edit_scene(&mut self, action: Action2d) -> Result<Note, String> {
+        match action {
             Action2d::Clear => {
                 self.scene.clear();
                 self.selection.clear();
@@ -252,46 +305,7 @@ impl Lab2d {
                 self.scene.remove(&removed);
                 return Ok(Note::Say(format!("Removed {} shape(s).", removed.len())));
             }
-            Action2d::SetCamera(camera) => {
-                if !camera.is_valid() {
-                    return Err(format!(
-                        "the view's centre {} and scale {} are out of range",
-                        camera.center, camera.scale
-                    ));
-                }
-                self.camera = camera;
-            }
-            Action2d::FrameScene(size) => {
-                if let Some((lo, hi)) = self.scene.bounds()
-                    && let Some(camera) = Camera2d::framing(lo, hi, size)
-                {
-                    self.camera = camera;
-                }
-                self.fit_pending = false;
-            }
-            Action2d::SetRay(handles) => {
-                if let Some(h) = handles
-                    && !(h.origin.is_finite() && h.target.is_finite())
-                {
-                    return Err("the ray's handles must be finite points".to_owned());
-                }
-                self.ray = handles;
-                if handles.is_some() {
-                    self.half.ask_about_ray();
-                }
-            }
-            Action2d::SetPoint(point) => {
-                if point.is_some_and(|p| !p.is_finite()) {
-                    return Err("the query point must be a finite point".to_owned());
-                }
-                self.point = point;
-                if point.is_some() {
-                    self.half.ask_about_point();
-                }
-            }
-            Action2d::SetDisplay(display) => self.display = display,
-            Action2d::SetVolumes(volumes) => self.volumes = volumes,
-            Action2d::SetObbPair(pair) => self.obb_pair = Some(pair),
+            _ => {}
         }
         Ok(Note::Keep)
     }

@@ -222,7 +222,9 @@ impl Lab3d {
     /// has answers to show straight away. Done once per loaded mesh.
     fn frame(&mut self, aspect: f32) {
         let Some(mesh) = &self.mesh else { return };
-        if !std::mem::take(&mut self.framing) || !(aspect.is_finite() && aspect > 0.0) {
+        // A view with no area frames nothing yet: the mesh waits for one that has.
+        let usable = aspect.is_finite() && aspect > 0.0;
+        if !usable || !std::mem::take(&mut self.framing) {
             return;
         }
         self.camera.frame_in(&mesh.bounds(), aspect);

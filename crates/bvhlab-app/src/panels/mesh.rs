@@ -53,10 +53,9 @@ fn mesh_section(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
         .button("Open mesh file…")
         .on_hover_text("OBJ, PLY, STL, glTF or GLB; or drop the file on the page")
         .clicked()
+        && let Some(a) = open_mesh_dialog(ui.ctx())
     {
-        if let Some(a) = open_mesh_dialog(ui.ctx()) {
-            cx.act(a);
-        }
+        cx.act(a);
     }
     if let Some(m) = &lab.mesh {
         ui.label(format!(
@@ -76,6 +75,13 @@ fn mesh_section(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
 }
 
 /// Opens the browser's file dialog for a mesh; natively, says to drop the file.
+#[cfg_attr(
+    not(target_arch = "wasm32"),
+    expect(
+        clippy::unnecessary_wraps,
+        reason = "on the web the dialog can fail and has nothing to say otherwise"
+    )
+)]
 fn open_mesh_dialog(ctx: &egui::Context) -> Option<Action> {
     #[cfg(target_arch = "wasm32")]
     {

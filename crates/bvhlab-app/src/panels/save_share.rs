@@ -26,19 +26,17 @@ impl Panel for SaveShare {
                     .button("Import scene…")
                     .on_hover_text("Open a .json scene file (or drop it on the window).")
                     .clicked()
+                    && let Some(a) = persist::import_scene(ui.ctx())
                 {
-                    if let Some(a) = persist::import_scene(ui.ctx()) {
-                        cx.act(a);
-                    }
+                    cx.act(a);
                 }
                 if ui
                     .button("Copy share link")
                     .on_hover_text("A link that opens the lab in this state.")
                     .clicked()
+                    && let Some(a) = persist::copy_share_link(cx.lab, ui.ctx())
                 {
-                    if let Some(a) = persist::copy_share_link(cx.lab, ui.ctx()) {
-                        cx.act(a);
-                    }
+                    cx.act(a);
                 }
             });
             if let Some(link) = persist::share_link_text(ui.ctx()) {
