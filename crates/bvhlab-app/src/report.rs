@@ -151,7 +151,7 @@ impl PlaybackReport {
         structure: &str,
         kind: crate::model::structures::StructureKind,
         recording: Option<&Result<crate::model::recording::Recording<V>, String>>,
-        snapshot: Option<&crate::model::playback::Snapshot<V>>,
+        snapshot: Option<&crate::model::snapshot::Snapshot<V>>,
     ) -> Option<Self> {
         let structure = structure.to_owned();
         let rec = match recording? {

@@ -6,10 +6,10 @@ use bvhlab::glam::Vec2;
 use bvhlab::{Event, Ray2};
 use bvhlab::{NodeOutline, Segment2};
 use bvhlab_app::model::build_job::{BuildJob, Structure};
-use bvhlab_app::model::playback::{Frontier, Snapshot};
 use bvhlab_app::model::presets::{random_points, random_segments};
 use bvhlab_app::model::recording::{Answer, Question, Recording};
 use bvhlab_app::model::scene::Scene;
+use bvhlab_app::model::snapshot::{Frontier, Snapshot};
 use bvhlab_app::model::structures::{BuildSettings, StructureKind};
 use bvhlab_app::pseudocode::{Task, Variant};
 

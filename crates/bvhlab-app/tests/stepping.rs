@@ -5,8 +5,8 @@
 
 use bvhlab::{Event, NodeId};
 use bvhlab_app::LabApp;
-use bvhlab_app::model::playback::describe;
 use bvhlab_app::model::structures::StructureKind;
+use bvhlab_app::pseudocode::describe;
 use bvhlab_app::pseudocode::{Task, Variant};
 use egui_kittest::Harness;
 

@@ -15,7 +15,7 @@ use crate::model::build_job::Structure;
 use crate::model::lab3d::Lab3d;
 use crate::model::lane::Lane;
 use crate::model::outcome::NodeMark;
-use crate::model::playback::Snapshot;
+use crate::model::snapshot::Snapshot;
 use crate::paint::colors;
 use crate::pseudocode::Task;
 

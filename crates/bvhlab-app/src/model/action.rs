@@ -14,12 +14,12 @@ use super::lab3d::Display3d;
 use super::mesh::MeshSource;
 use super::orbit_camera::OrbitCamera;
 use super::presets::Preset;
+use super::question::{Task, Variant};
 use super::restore::Restore;
 use super::scene::ShapeKind;
 use super::structures::BuildSettings;
 use super::tools::{Tool, Tool3d};
 use super::volumes::{ObbPair, VolumeToggles};
-use crate::pseudocode::{Task, Variant};
 
 /// A change of the lab.
 #[derive(Clone, Debug, PartialEq)]

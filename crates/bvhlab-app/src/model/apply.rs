@@ -10,8 +10,9 @@ use super::action::{Action, Action2d, Action3d, HalfAction, PlaybackAction};
 use super::dimension::{Dimension, LabPrimitive};
 use super::half::{Half, MAX_K};
 use super::lane::{BuildBudget, Lane};
+use super::question::Variant;
 use super::{Lab, Note};
-use crate::pseudocode::{Variant, variants};
+use crate::pseudocode::variants;
 
 impl Lab {
     /// Carries out `action` with the rules that go with it, then brings what is derived from

@@ -8,9 +8,10 @@ use bvhlab::{Aabb, Bvh, Obb, Ray, SpatialIndex, Sphere};
 use super::dimension::LabPrimitive;
 use super::lane::{BuildBudget, Lane};
 use super::playback::Playback;
+use super::question::{Task, Variant};
 use super::recording::Question;
 use super::structures::{BuildSettings, StructureKind};
-use crate::pseudocode::{Task, Variant, variants};
+use crate::pseudocode::variants;
 
 /// The largest `k` of the k-nearest query.
 pub const MAX_K: usize = 64;

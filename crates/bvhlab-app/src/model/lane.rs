@@ -12,10 +12,11 @@ use bvhlab::{Aabb, Bvh, Obb, SpatialIndex, Sphere};
 use super::build_job::{BuildJob, Structure};
 use super::dimension::{LabPrimitive, thousands};
 use super::outcome::{NodeMarks, PointOutcome, RayOutcome};
-use super::playback::{Playback, Snapshot};
+use super::playback::Playback;
+use super::question::Task;
 use super::recording::{Question, Recording};
+use super::snapshot::Snapshot;
 use super::structures::BuildSettings;
-use crate::pseudocode::Task;
 
 /// How much build work a refresh may do.
 #[derive(Clone, Copy, Debug, PartialEq)]

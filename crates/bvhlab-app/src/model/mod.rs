@@ -16,8 +16,9 @@
 //!   [`half::Half`] (structures, question, playback) over the primitive of each
 //!   ([`dimension::LabPrimitive`]).
 //! - [`lane`]: one structure and what is derived from it; [`build_job`]: building in slices.
-//! - [`recording`], [`playback`], [`outcome`]: questions asked with an observer, folded at any
-//!   step; [`structures`]: one dispatch over the core's structures.
+//! - [`question`]: what is stepped through; [`recording`]: a question asked with an observer; [`snapshot`]: its events folded at
+//!   any step; [`playback`]: the transport; [`outcome`]: the live answers beside brute
+//!   force's; [`structures`]: one dispatch over the core's structures.
 //! - [`scene`], [`presets`], [`volumes`], [`camera2d`]: the 2D half's data; [`mesh`],
 //!   [`orbit_camera`], [`heat`]: the 3D half's; [`tools`]: what a press does in each.
 //! - [`action`]: every change; [`restore`]: a whole state, checked.
@@ -37,9 +38,11 @@ pub mod orbit_camera;
 pub mod outcome;
 pub mod playback;
 pub mod presets;
+pub mod question;
 pub mod recording;
 pub mod restore;
 pub mod scene;
+pub mod snapshot;
 pub mod structures;
 pub mod tools;
 pub mod volumes;

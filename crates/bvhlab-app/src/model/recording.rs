@@ -12,8 +12,9 @@ use bvhlab::{
     Sphere, Traced, Vector,
 };
 
+pub use super::question::Question;
+use super::question::{Task, Variant};
 use super::structures::{BuildSettings, Built};
-use crate::pseudocode::{Task, Variant};
 
 /// What a question is asked of: a built structure, brute force over the same primitives, and
 /// what the recording remembers about where they came from.
@@ -31,23 +32,6 @@ pub struct Subject<'a, P: Primitive> {
     pub revision: u64,
     /// Its node count.
     pub node_count: usize,
-}
-
-/// The question: everything a recording depends on besides the structure.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Question<V: Vector = Vec2> {
-    /// What to step through.
-    pub task: Task,
-    /// Which version of the algorithm.
-    pub variant: Variant,
-    /// The ray, for ray tasks.
-    pub ray: Option<Ray<V>>,
-    /// The query point, for point tasks.
-    pub point: Option<V>,
-    /// How many nearest primitives.
-    pub k: usize,
-    /// The range query's radius around the point.
-    pub radius: f32,
 }
 
 /// A query's or build's answer, in a form the panels can print and compare.

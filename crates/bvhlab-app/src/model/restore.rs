@@ -15,10 +15,10 @@ use super::lane::Lane;
 use super::mesh::MeshSource;
 use super::playback::Playback;
 use super::presets::Preset;
+use super::question::{Task, Variant};
 use super::scene::Scene;
 use super::structures::BuildSettings;
 use super::volumes::VolumeToggles;
-use crate::pseudocode::{Task, Variant};
 
 /// The question and playback of one half.
 #[derive(Clone, Debug, PartialEq)]

@@ -6,11 +6,12 @@ use bvhlab::Vector;
 use egui::{Color32, RichText};
 
 use super::step_through::variant_label;
-use crate::model::playback::{Counters, Frontier, Snapshot, describe};
 use crate::model::recording::Recording;
+use crate::model::snapshot::{Counters, Frontier, Snapshot};
 use crate::model::structures::StructureKind;
 use crate::paint::colors;
 use crate::pseudocode::Task;
+use crate::pseudocode::describe;
 
 /// One structure's recording at the playback step: the sentence, the listing with its line,
 /// the counters, the waiting nodes, the best so far, and a build's split.

@@ -6,8 +6,8 @@ use egui_plot::{HLine, Line, Plot, PlotPoints, Points, VLine};
 
 use bvhlab::Vector;
 
-use crate::model::playback::Snapshot;
 use crate::model::recording::Recording;
+use crate::model::snapshot::Snapshot;
 use crate::model::structures::StructureKind;
 use crate::paint::colors;
 

@@ -10,7 +10,7 @@
 //!
 //! Files: `listing` (a line's step, and how a classifier reads an event), one file per family
 //! of algorithms (`brute`, `bvh`, `lecture`, `plane` for k-d and BSP trees, `quadtree`,
-//! `grid`) and `build` for the builders.
+//! `grid`), `build` for the builders, and `sentence` (each event in words).
 
 mod brute;
 mod build;
@@ -20,53 +20,16 @@ mod lecture;
 mod listing;
 mod plane;
 mod quadtree;
+mod sentence;
 
 use bvhlab::glam::Vec2;
 use bvhlab::{Event, Vector};
 
+pub use self::sentence::describe;
+pub use crate::model::question::{Task, Variant};
+
 use self::listing::{Classify, Listing};
 use crate::model::structures::StructureKind;
-
-/// What is being stepped through.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Task {
-    /// The first hit along a ray.
-    FirstHit,
-    /// Some hit along a ray, not necessarily the first (shadow rays): stops at the first
-    /// one found.
-    AnyHit,
-    /// Every hit along a ray.
-    AllHits,
-    /// The k nearest primitives to a point (the lecture's distance query for k = 1).
-    Nearest,
-    /// Every primitive in a box or ball.
-    Range,
-    /// Building the structure.
-    Build,
-}
-
-impl Task {
-    /// Every task, queries first.
-    pub const ALL: [Self; 6] = [
-        Self::FirstHit,
-        Self::AnyHit,
-        Self::AllHits,
-        Self::Nearest,
-        Self::Range,
-        Self::Build,
-    ];
-}
-
-/// Which version of the algorithm.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Variant {
-    /// What the core runs: near-first order, pruning by the best so far.
-    Full,
-    /// The slides' pseudocode, literally (BVH first hit and BVH nearest only).
-    Lecture,
-    /// The slides' minDistance plus the pruning the slide leaves out (BVH nearest only).
-    LecturePruned,
-}
 
 /// One algorithm's pseudocode.
 #[derive(Debug, PartialEq, Eq)]

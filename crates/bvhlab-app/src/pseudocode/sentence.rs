@@ -1,0 +1,121 @@
+//! A sentence for each event, in the lecture's words: what the "Step through" panel says at
+//! each step (and what a screen reader hears).
+
+use bvhlab::structure::{PrimitiveResult, PruneAt, PruneReason};
+use bvhlab::{Event, Vector};
+
+/// A sentence for an event, in the lecture's words.
+pub fn describe<V: Vector>(event: &Event<V>) -> String {
+    match *event {
+        Event::EnterNode { node, depth } => format!("enter node {} (depth {depth})", node.0),
+        Event::RayBoundTest { node, interval } => match interval {
+            Some((a, b)) => format!(
+                "ray meets node {}'s volume for t in [{a:.3}, {b:.3}]",
+                node.0
+            ),
+            None => format!("ray misses node {}'s volume", node.0),
+        },
+        Event::DistanceBoundTest { node, distance } => {
+            format!("node {}'s volume is {distance:.3} from the point", node.0)
+        }
+        Event::ChildQueued {
+            parent,
+            child,
+            key,
+            rank,
+        } => format!(
+            "queue child {} of node {} (key {key:.3}, visit order {})",
+            child.0,
+            parent.0,
+            rank + 1
+        ),
+        Event::Prune { node, reason, at } => match at {
+            PruneAt::Test => format!("skip node {}: {}", node.0, why(reason)),
+            PruneAt::Pop => format!("pop node {} and skip it: {}", node.0, why(reason)),
+            PruneAt::Stop => format!("stop, skipping node {}: {}", node.0, why(reason)),
+        },
+        Event::PrimitiveTest { prim, result } => match result {
+            PrimitiveResult::Hit(t) => format!("test primitive {prim}: hit at t = {t:.3}"),
+            PrimitiveResult::Miss => format!("test primitive {prim}: miss"),
+            PrimitiveResult::Distance(d) => format!("test primitive {prim}: distance {d:.3}"),
+            PrimitiveResult::Overlap => format!("test primitive {prim}: inside the range"),
+            PrimitiveResult::NoOverlap => format!("test primitive {prim}: outside the range"),
+            PrimitiveResult::AlreadyTested => {
+                format!("primitive {prim} was already tested in another cell (mailbox)")
+            }
+        },
+        Event::NewBest { prim, value } => format!("new best: primitive {prim} at {value:.3}"),
+        Event::HitBeyondRegion { prim, t, t_exit } => format!(
+            "primitive {prim} is hit at t = {t:.3}, beyond this region (exits at {t_exit:.3}): keep looking"
+        ),
+        Event::CellEnter {
+            coords,
+            t_enter,
+            t_exit,
+            ..
+        } => {
+            let cell = if V::DIM == 3 {
+                format!("({}, {}, {})", coords[0], coords[1], coords[2])
+            } else {
+                format!("({}, {})", coords[0], coords[1])
+            };
+            format!("enter cell {cell} for t in [{t_enter:.3}, {t_exit:.3}]")
+        }
+        Event::PlaneCrossed { node, t } => {
+            format!("the ray crosses node {}'s plane at t = {t:.3}", node.0)
+        }
+        Event::BuildNode {
+            node, depth, prims, ..
+        } => format!(
+            "make node {} (depth {depth}) over {prims} primitives",
+            node.0
+        ),
+        Event::BuildSplit {
+            node,
+            normal,
+            offset,
+            left,
+            right,
+            ..
+        } => format!(
+            "split node {} by {}·p = {offset:.3}: {left} below, {right} above",
+            node.0,
+            plane_name(normal)
+        ),
+        Event::BuildLeaf { node, prims } => format!("node {} becomes a leaf of {prims}", node.0),
+        Event::PairTest { a, b, overlap } => format!("test pair ({a}, {b}): {overlap}"),
+        Event::NodePairTest { a, b, overlap } => {
+            format!("test nodes ({}, {}): {overlap}", a.0, b.0)
+        }
+    }
+}
+
+/// `x`, `y` or `z` for an axis-aligned plane's normal; the normal's coordinates otherwise.
+fn plane_name<V: Vector>(normal: V) -> String {
+    let axes = ["x", "y", "z"];
+    for (axis, name) in axes.iter().enumerate().take(V::DIM) {
+        let mut unit = V::ZERO;
+        unit.set_coord(axis, 1.0);
+        if normal == unit {
+            return (*name).to_owned();
+        }
+    }
+    let coords: Vec<String> = (0..V::DIM)
+        .map(|i| format!("{:.2}", normal.coord(i)))
+        .collect();
+    format!("({})", coords.join(", "))
+}
+
+fn why(reason: PruneReason) -> String {
+    match reason {
+        PruneReason::RayMissed => "the ray misses it".to_owned(),
+        PruneReason::BeyondBestHit { t_enter, best_t } => {
+            format!("the ray enters at t = {t_enter:.3}, beyond the best hit t = {best_t:.3}")
+        }
+        PruneReason::NoNearer { distance, best } => {
+            format!("its volume is {distance:.3} away, no nearer than the best {best:.3}")
+        }
+        PruneReason::NoOverlap => "it does not overlap the range".to_owned(),
+        PruneReason::AlreadyHit => "a hit was already found".to_owned(),
+    }
+}
