@@ -249,3 +249,34 @@ mod tests {
         assert!(clipped_plane(Vec2::X, 40.0, &bounds, &[]).is_none());
     }
 }
+
+/// What the colours of the view mean, at the top right of `rect`; `tested` names what a
+/// primitive test is of ("tested segment", "tested triangle").
+pub fn legend(painter: &egui::Painter, rect: egui::Rect, tested: &str) {
+    use egui::{Align2, FontId};
+    let entries = [
+        (colors::VISITED, "visited"),
+        (colors::CULLED, "culled"),
+        (colors::PRUNED, "pruned"),
+        (colors::WAITING, "waiting"),
+        (colors::CURRENT, "current"),
+        (colors::TESTED, tested),
+        (colors::ANSWER, "answer"),
+    ];
+    let mut at = rect.right_top() + egui::vec2(-120.0, 10.0);
+    for (color, label) in entries {
+        painter.rect_filled(
+            egui::Rect::from_min_size(at, egui::vec2(10.0, 10.0)),
+            2.0,
+            color,
+        );
+        painter.text(
+            at + egui::vec2(16.0, 5.0),
+            Align2::LEFT_CENTER,
+            label,
+            FontId::proportional(12.0),
+            Color32::LIGHT_GRAY,
+        );
+        at.y += 16.0;
+    }
+}

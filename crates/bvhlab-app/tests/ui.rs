@@ -656,3 +656,35 @@ fn ten_thousand_segments_from_the_preset_menu() {
     );
     assert!(outcome.cost.prim_tests < 1_000, "{:?}", outcome.cost);
 }
+
+#[test]
+fn the_panel_shows_the_rays_handles_and_the_point_as_numbers() {
+    let mut h = lab();
+    drag_test_ray(&mut h);
+    click(&mut h, "Query point");
+    let q = screen(&h, Vec2::new(12.0, 4.0));
+    click_at(&mut h, q);
+    let two = h.state().lab().two();
+    let handles = two.ray.expect("a ray");
+    let point = two.point.expect("a point");
+    // The fields show e's x and y, s's, and q's: what the panel would let the student type.
+    let values: Vec<f64> = h
+        .query_all_by_role(Role::SpinButton)
+        .filter_map(|n| n.accesskit_node().numeric_value())
+        .collect();
+    for v in [
+        handles.origin.x,
+        handles.origin.y,
+        handles.target.x,
+        handles.target.y,
+        point.x,
+        point.y,
+    ] {
+        assert!(
+            values
+                .iter()
+                .any(|&shown| (shown - f64::from(v)).abs() < 1e-4),
+            "{v} among the fields {values:?}"
+        );
+    }
+}

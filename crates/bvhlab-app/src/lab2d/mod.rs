@@ -116,6 +116,7 @@ pub fn canvas(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
             );
         }
     }
+    crate::paint::legend(&painter, response.rect, "tested segment");
     if lab.half.compare.is_some() {
         let x = halves[0].right() + 2.0;
         painter.vline(

@@ -172,7 +172,7 @@ pub fn view(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
             egui::Stroke::new(2.0, Color32::from_gray(70)),
         );
     }
-    legend(&painter, rect);
+    crate::paint::legend(&painter, rect, "tested triangle");
 }
 
 /// The leaf of lane `index`'s structure holding the triangle under `pointer` in the view of
@@ -226,34 +226,5 @@ fn frame(lab: &Lab3d, mesh: Option<Arc<MeshData>>, drawn: &Draw3d) -> Frame3d {
                 color: d.color,
             })
             .collect(),
-    }
-}
-
-/// What the colours mean.
-pub fn legend(painter: &egui::Painter, rect: egui::Rect) {
-    let entries = [
-        (colors::VISITED, "visited"),
-        (colors::CULLED, "culled"),
-        (colors::PRUNED, "pruned"),
-        (colors::WAITING, "waiting"),
-        (colors::CURRENT, "current"),
-        (colors::TESTED, "tested triangle"),
-        (colors::ANSWER, "answer"),
-    ];
-    let mut at = rect.right_top() + egui::vec2(-120.0, 10.0);
-    for (color, label) in entries {
-        painter.rect_filled(
-            egui::Rect::from_min_size(at, egui::vec2(10.0, 10.0)),
-            2.0,
-            color,
-        );
-        painter.text(
-            at + egui::vec2(16.0, 5.0),
-            Align2::LEFT_CENTER,
-            label,
-            FontId::proportional(12.0),
-            Color32::LIGHT_GRAY,
-        );
-        at.y += 16.0;
     }
 }

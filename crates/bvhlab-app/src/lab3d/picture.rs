@@ -15,8 +15,21 @@ use crate::model::orbit_camera::OrbitCamera;
 use crate::paint::colors;
 
 /// The most mesh triangles drawn into a picture (an SVG path each: past this the file would
-/// be tens of megabytes); bigger meshes are left out with a note.
+/// be tens of megabytes); a bigger mesh is left out, and the export says so
+/// ([`mesh_left_out`]).
 pub const MAX_PICTURE_TRIANGLES: usize = 300_000;
+
+/// Why the picture has no mesh, when it has none for its size.
+pub fn mesh_left_out(lab: &Lab3d) -> Option<String> {
+    let n = lab.triangles().len();
+    (n > MAX_PICTURE_TRIANGLES).then(|| {
+        format!(
+            "the mesh's {} triangles are left out of the SVG (it draws at most {})",
+            crate::model::dimension::thousands(n),
+            crate::model::dimension::thousands(MAX_PICTURE_TRIANGLES)
+        )
+    })
+}
 
 /// The picture of the whole view (both halves when comparing) in `rect`.
 pub fn picture(lab: &Lab3d, rect: Rect) -> Vec<Shape> {

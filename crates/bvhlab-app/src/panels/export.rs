@@ -45,11 +45,15 @@ pub fn export_buttons(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
                 crate::lab2d::picture(lab.two(), view_rect, ui.painter())
             };
             let svg = crate::export::svg_document(&shapes, view_rect, BACKGROUND);
-            cx.act(said(crate::export::save_file(
-                &format!("{name}.svg"),
-                "image/svg+xml",
-                svg.as_bytes(),
-            )));
+            let saved =
+                crate::export::save_file(&format!("{name}.svg"), "image/svg+xml", svg.as_bytes());
+            let left_out = three
+                .then(|| crate::lab3d::picture::mesh_left_out(lab.three()))
+                .flatten();
+            cx.act(said(saved.map(|at| match left_out {
+                Some(why) => format!("{at} ({why})"),
+                None => at,
+            })));
         }
         if ui
             .button("PNG")

@@ -104,3 +104,21 @@ pub fn toggle<T: Copy>(
         .changed()
         .then_some(copy)
 }
+
+/// A row of number fields for a point's coordinates (x, y and, in 3D, z), each named for
+/// screen readers ("origin x", ...); whether one changed.
+pub fn coords_editor(ui: &mut egui::Ui, label: &str, coords: &mut [f32]) -> bool {
+    ui.horizontal(|ui| {
+        ui.label(label);
+        let mut changed = false;
+        for (axis, c) in ["x", "y", "z"].into_iter().zip(coords.iter_mut()) {
+            let name = ui.label(RichText::new(axis).weak()).id;
+            changed |= ui
+                .add(egui::DragValue::new(c).speed(0.01).max_decimals(4))
+                .labelled_by(name)
+                .changed();
+        }
+        changed
+    })
+    .inner
+}

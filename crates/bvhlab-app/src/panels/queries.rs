@@ -3,7 +3,7 @@
 
 use egui::{Grid, RichText};
 
-use super::{Panel, legend};
+use super::{Panel, coords_editor, legend};
 use crate::model::lab2d::Lab2d;
 use crate::model::outcome::NodeMark;
 use crate::model::{Action2d, HalfAction};
@@ -40,6 +40,7 @@ fn query_section(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
             cx.act(HalfAction::SetK(k));
         }
     });
+    coordinates(cx, ui);
     ray_answer(lab, ui);
     point_answer(lab, ui);
     let lane = &lab.half.lane;
@@ -111,6 +112,23 @@ pub fn counters(
             RichText::new("Differs from brute force: please report this scene.")
                 .color(colors::CULLED),
         );
+    }
+}
+
+/// The ray's handles and the point, to type exactly (as the 3D panel takes them).
+fn coordinates(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
+    let lab = cx.lab.two();
+    if let Some(mut ray) = lab.ray {
+        let e = coords_editor(ui, "ray e", ray.origin.as_mut());
+        let s = coords_editor(ui, "ray s", ray.target.as_mut());
+        if e || s {
+            cx.act(Action2d::SetRay(Some(ray)));
+        }
+    }
+    if let Some(mut p) = lab.point
+        && coords_editor(ui, "point q", p.as_mut())
+    {
+        cx.act(Action2d::SetPoint(Some(p)));
     }
 }
 

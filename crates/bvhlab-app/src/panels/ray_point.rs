@@ -2,10 +2,9 @@
 //! radius, and the answer with what it cost beside brute force.
 
 use bvhlab::Ray3;
-use bvhlab::glam::Vec3;
 use egui::RichText;
 
-use super::Panel;
+use super::{Panel, coords_editor};
 use crate::model::dimension::thousands;
 use crate::model::lab3d::Lab3d;
 use crate::model::mesh::Mesh3d;
@@ -52,8 +51,8 @@ fn query_section(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
     if let Some(ray) = lab.ray {
         let mut origin = ray.origin();
         let mut dir = ray.dir();
-        let a = vec3_editor(ui, "origin", &mut origin);
-        let b = vec3_editor(ui, "direction", &mut dir);
+        let a = coords_editor(ui, "origin", origin.as_mut());
+        let b = coords_editor(ui, "direction", dir.as_mut());
         if a || b {
             cx.act(match Ray3::new(origin, dir) {
                 Ok(r) => Action3d::SetRay(Some(r)).into(),
@@ -62,7 +61,7 @@ fn query_section(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
         }
     }
     if let Some(mut p) = lab.point
-        && vec3_editor(ui, "point", &mut p)
+        && coords_editor(ui, "point", p.as_mut())
     {
         cx.act(Action3d::SetPoint(Some(p)));
     }
@@ -91,27 +90,6 @@ fn query_section(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
         }
     }
     answer(lab, ui);
-}
-
-/// Three number fields; whether one changed.
-fn vec3_editor(ui: &mut egui::Ui, label: &str, v: &mut Vec3) -> bool {
-    ui.horizontal(|ui| {
-        ui.label(label);
-        let mut changed = false;
-        for (axis, c) in ["x", "y", "z"]
-            .into_iter()
-            .zip([&mut v.x, &mut v.y, &mut v.z])
-        {
-            // Each field is named for screen readers ("origin x", ...), and shows its axis.
-            let name = ui.label(RichText::new(axis).weak()).id;
-            changed |= ui
-                .add(egui::DragValue::new(c).speed(0.01).max_decimals(4))
-                .labelled_by(name)
-                .changed();
-        }
-        changed
-    })
-    .inner
 }
 
 /// The answer and what it cost, against brute force.
