@@ -232,24 +232,6 @@ pub fn clipped_plane(
     (lo < hi && lo.is_finite() && hi.is_finite()).then(|| (base + dir * lo, base + dir * hi))
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn planes_clip_to_their_region() {
-        let bounds = Aabb2::new(Vec2::ZERO, Vec2::splat(10.0));
-        let (a, b) = clipped_plane(Vec2::X, 4.0, &bounds, &[]).expect("crosses the box");
-        assert!((a.x - 4.0).abs() < 1e-5 && (b.x - 4.0).abs() < 1e-5);
-        assert!((a.y - b.y).abs() > 9.99);
-        // Keep only y >= 6: the line x = 4 is cut to y in [6, 10].
-        let (a, b) =
-            clipped_plane(Vec2::X, 4.0, &bounds, &[(Vec2::Y, 6.0, true)]).expect("still crosses");
-        assert!((a.y.min(b.y) - 6.0).abs() < 1e-4, "{a} {b}");
-        assert!(clipped_plane(Vec2::X, 40.0, &bounds, &[]).is_none());
-    }
-}
-
 /// What the colours of the view mean, at the top right of `rect`; `tested` names what a
 /// primitive test is of ("tested segment", "tested triangle").
 pub fn legend(painter: &egui::Painter, rect: egui::Rect, tested: &str) {
@@ -278,5 +260,23 @@ pub fn legend(painter: &egui::Painter, rect: egui::Rect, tested: &str) {
             Color32::LIGHT_GRAY,
         );
         at.y += 16.0;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn planes_clip_to_their_region() {
+        let bounds = Aabb2::new(Vec2::ZERO, Vec2::splat(10.0));
+        let (a, b) = clipped_plane(Vec2::X, 4.0, &bounds, &[]).expect("crosses the box");
+        assert!((a.x - 4.0).abs() < 1e-5 && (b.x - 4.0).abs() < 1e-5);
+        assert!((a.y - b.y).abs() > 9.99);
+        // Keep only y >= 6: the line x = 4 is cut to y in [6, 10].
+        let (a, b) =
+            clipped_plane(Vec2::X, 4.0, &bounds, &[(Vec2::Y, 6.0, true)]).expect("still crosses");
+        assert!((a.y.min(b.y) - 6.0).abs() < 1e-4, "{a} {b}");
+        assert!(clipped_plane(Vec2::X, 40.0, &bounds, &[]).is_none());
     }
 }
