@@ -162,7 +162,7 @@ fn layout(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
                     .show(ui, |ui| crate::panels::step_through::step_through(cx, ui));
             });
     }
-    if cx.ui.panels.tree {
+    if cx.ui.panels.tree_in(cx.lab.dimension()) {
         egui::Panel::bottom("tree")
             .resizable(true)
             .default_size(230.0)

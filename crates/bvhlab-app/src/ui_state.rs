@@ -17,8 +17,20 @@ pub struct PanelsShown {
     pub controls: bool,
     /// "Step through" (right).
     pub stepper: bool,
-    /// The tree diagram (below the view).
+    /// The tree diagram below the 2D canvas.
     pub tree: bool,
+    /// The tree diagram below the 3D view (off at first: the view keeps the room).
+    pub tree3d: bool,
+}
+
+impl PanelsShown {
+    /// Whether the tree diagram is shown below the view of `dimension`.
+    pub fn tree_in(&self, dimension: crate::model::Dimension) -> bool {
+        match dimension {
+            crate::model::Dimension::Two => self.tree,
+            crate::model::Dimension::Three => self.tree3d,
+        }
+    }
 }
 
 impl Default for PanelsShown {
@@ -27,6 +39,7 @@ impl Default for PanelsShown {
             controls: true,
             stepper: true,
             tree: true,
+            tree3d: false,
         }
     }
 }

@@ -45,12 +45,13 @@ fn until_idle(h: &mut Harness<'_, LabApp>) {
 #[test]
 fn every_documented_parameter_is_read_and_a_typo_is_named() {
     let p = StartParams::parse(
-        "?preset=quadtree&structure=kd-tree&task=nearest&ray=1,2,3,4&point=5,6&step=7\
-         &lab=left&origin=https%3A%2F%2Fcourse.example.edu&fresh=1&panels=stepper",
+        "?preset=quadtree&structure=kd-tree&compare=grid&task=nearest&ray=1,2,3,4&point=5,6\
+         &step=7&lab=left&origin=https%3A%2F%2Fcourse.example.edu&fresh=1&panels=stepper",
     );
     assert_eq!(p.problems, Vec::<String>::new());
     assert_eq!(p.preset, Some(Preset::QuadtreeHandful));
     assert_eq!(p.structure, Some(StructureName::KdTree));
+    assert_eq!(p.compare, Some(StructureName::Grid));
     assert_eq!(p.task, Some(TaskName::Nearest));
     assert_eq!(p.ray, Some(vec![1.0, 2.0, 3.0, 4.0]));
     assert_eq!(p.point, Some(vec![5.0, 6.0]));
@@ -66,6 +67,7 @@ fn every_documented_parameter_is_read_and_a_typo_is_named() {
         "preset",
         "mesh",
         "structure",
+        "compare",
         "task",
         "ray",
         "point",
@@ -160,6 +162,26 @@ fn parameters_set_the_scene_structure_ray_and_step_and_the_answer_is_brute_force
     assert!(query.agrees);
     h.step();
     assert_eq!(h.state().report.playback[0].step, 3);
+}
+
+#[test]
+fn a_comparison_from_the_address_answers_beside_the_first_structure() {
+    let params = StartParams::parse("preset=kd-tree&structure=kd-tree&compare=grid&ray=0,4.5,1,0");
+    let started = start(None, &params, None);
+    assert_eq!(started.message, None);
+    let h = harness(started.app);
+    let half = &h.state().lab().two().half;
+    assert_eq!(half.lane.settings.kind, StructureKind::KdTree);
+    let other = half.compare.as_ref().expect("a comparison lane");
+    assert_eq!(other.settings.kind, StructureKind::Grid);
+    // Both lanes answer the one ray, each as brute force does.
+    let playback = &h.state().report.playback;
+    assert_eq!(playback.len(), 2, "{playback:?}");
+    assert!(
+        playback.iter().all(|p| p.agrees && p.error.is_none()),
+        "{playback:?}"
+    );
+    assert_eq!(playback[1].structure, StructureKind::Grid.label());
 }
 
 #[test]

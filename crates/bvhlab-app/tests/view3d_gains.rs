@@ -49,12 +49,23 @@ fn until_built(h: &mut Harness<'_, LabApp>) {
     panic!("the structures were not built in 2,000 frames");
 }
 
-/// The lab switched to 3D, the bunny loaded and built.
+/// The lab switched to 3D, the bunny loaded and built, and its tree diagram shown (the 3D
+/// view opens without it, to keep the room for the view).
 fn lab_3d() -> Harness<'static, LabApp> {
     let mut h = lab();
     click(&mut h, "3D: meshes");
     assert_eq!(h.state().lab().dimension(), Dimension::Three);
     until_built(&mut h);
+    assert!(
+        !h.state().ui.panels.tree3d,
+        "the 3D tree diagram starts hidden"
+    );
+    assert!(
+        !labels(&h).iter().any(|l| l.contains(" leaves, ")),
+        "no diagram yet"
+    );
+    click(&mut h, "tree diagram");
+    assert!(h.state().ui.panels.tree3d && h.state().ui.panels.tree);
     h
 }
 

@@ -14,7 +14,7 @@ use crate::persist::{STORAGE_KEY, StructureName, TaskName};
 pub use crate::ui_state::PanelsShown as Panels;
 
 /// The parameters the lab reads, with what each does (the README's table is this list).
-pub const PARAMETERS: [(&str, &str); 11] = [
+pub const PARAMETERS: [(&str, &str); 12] = [
     (
         "preset",
         "a 2D scene: one of the presets' slugs (kd-tree, quadtree, 10k, ...)",
@@ -26,6 +26,10 @@ pub const PARAMETERS: [(&str, &str); 11] = [
     (
         "structure",
         "the structure: brute-force, sphere-tree, aabb-tree, obb-tree, grid, bsp, quadtree, kd-tree",
+    ),
+    (
+        "compare",
+        "a second structure shown beside the first, on the same question (same names as structure)",
     ),
     (
         "task",
@@ -64,6 +68,8 @@ pub struct StartParams {
     pub mesh: Option<String>,
     /// `structure=`.
     pub structure: Option<StructureName>,
+    /// `compare=`.
+    pub compare: Option<StructureName>,
     /// `task=`.
     pub task: Option<TaskName>,
     /// `ray=`: 4 or 6 numbers.
@@ -94,12 +100,16 @@ fn parse_panels(value: &str) -> Result<Panels, String> {
             controls: false,
             stepper: false,
             tree: false,
+            tree3d: false,
         };
         for name in value.split(',').map(str::trim).filter(|n| !n.is_empty()) {
             match name {
                 "controls" => panels.controls = true,
                 "stepper" => panels.stepper = true,
-                "tree" => panels.tree = true,
+                "tree" => {
+                    panels.tree = true;
+                    panels.tree3d = true;
+                }
                 other => {
                     return Err(format!(
                         "the address's panels has \"{}\"; the panels are controls, stepper and tree",
@@ -166,6 +176,7 @@ impl StartParams {
                 self.mesh = Some(value.to_owned());
             }
             "structure" => self.structure = Some(named("structure", value)?),
+            "compare" => self.compare = Some(named("compare", value)?),
             "task" => self.task = Some(named("task", value)?),
             "ray" => self.ray = Some(numbers("ray", value, &[4, 6])?),
             "point" => self.point = Some(numbers("point", value, &[2, 3])?),
@@ -211,6 +222,9 @@ impl StartParams {
         }
         if let Some(s) = self.structure {
             parts.push(format!("structure={}", stored_name(&s)));
+        }
+        if let Some(s) = self.compare {
+            parts.push(format!("compare={}", stored_name(&s)));
         }
         if let Some(t) = self.task {
             parts.push(format!("task={}", stored_name(&t)));
@@ -261,6 +275,19 @@ impl StartParams {
             apply(
                 lab,
                 HalfAction::SetStructure(settings).into(),
+                &mut problems,
+            );
+        }
+        if let Some(structure) = self.compare {
+            let mut settings = if three {
+                lab.three().half.lane.settings
+            } else {
+                lab.two().half.lane.settings
+            };
+            settings.kind = structure.into();
+            apply(
+                lab,
+                HalfAction::SetCompare(Some(settings)).into(),
                 &mut problems,
             );
         }

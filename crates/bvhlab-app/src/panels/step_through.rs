@@ -139,7 +139,12 @@ fn task_picker<P: LabPrimitive>(cx: &mut Cx<'_>, half: &Half<P>, ui: &mut egui::
 fn compare_picker<P: LabPrimitive>(cx: &mut Cx<'_>, half: &Half<P>, ui: &mut egui::Ui) {
     let dim = dim_of::<P>();
     ui.horizontal(|ui| {
-        ui.checkbox(&mut cx.ui.panels.tree, "tree diagram");
+        let panels = &mut cx.ui.panels;
+        let shown = match P::DIMENSION {
+            Dimension::Two => &mut panels.tree,
+            Dimension::Three => &mut panels.tree3d,
+        };
+        ui.checkbox(shown, "tree diagram");
         ui.checkbox(&mut cx.ui.link_hover, "hover finds nodes")
             .on_hover_text("hovering the view highlights the node under the pointer, and its place in the tree");
     });
