@@ -1,27 +1,37 @@
 //! What the scene-file and share-link targets check once a state has been read: the lab's
 //! promises about a state that passed its checks.
 
-use bvhlab_app::LabApp;
+use bvhlab_app::model::{Action, Lab};
 use bvhlab_app::persist::{SavedState, from_file, from_fragment, link_fragment, to_file};
 
 /// A state that `from_file` or `from_fragment` accepted must pass `check`, open in a fresh lab
-/// (whose structures are then built and queried, as the next frame would), and come back from
-/// the scene file and the share link the lab writes for it (export then import).
+/// (which then runs one frame: its structures built and queried, as the next frame would),
+/// and come back from the scene file and the share link the lab writes for it (export then
+/// import).
 ///
 /// # Panics
 /// When any of that fails: the fuzzer reports it as a crash.
 pub fn accepted(state: SavedState) {
     assert_eq!(state.check(), Ok(()), "an accepted state fails its check");
-    let mut app = LabApp::default();
-    if let Err(error) = state.clone().apply(&mut app) {
+    let mut lab = Lab::default();
+    let restore = match state.apply() {
+        Ok(action) => action,
+        Err(error) => panic!("an accepted state gives no action: {error}"),
+    };
+    if let Err(error) = lab.apply(restore) {
         panic!("an accepted state does not apply: {error}");
     }
-    app.refresh();
-    if let Err(error) = from_file(&to_file(&app)) {
+    if let Err(error) = lab.apply(Action::Tick {
+        seconds: 0.0,
+        build_ms: 50.0,
+    }) {
+        panic!("the frame after opening it fails: {error}");
+    }
+    if let Err(error) = from_file(&to_file(&lab)) {
         panic!("the exported scene file does not read back: {error}");
     }
     // A state may be too large for a link (the lab says so); one that fits must read back.
-    if let Ok(link) = link_fragment(&SavedState::capture(&app))
+    if let Ok(link) = link_fragment(&SavedState::capture(&lab))
         && let Err(error) = from_fragment(&link)
     {
         panic!("the share link made for it does not open: {error}");

@@ -8,7 +8,9 @@
 // hit (the same as brute force) and that the hit marker appears under the pointer, steps the
 // query with the keyboard, shows the traversal-cost heat map (GPU on WebGPU, CPU on WebGL2)
 // and waits for it to finish, then drops a broken STL file (refused, the bunny stays) and a
-// good one (opened, through the binary read path). Screenshots go to target/e2e/3d-*.png.
+// good one (opened, through the binary read path), and opens the bunny again with two
+// structures side by side and their tree diagrams (`compare=`, `panels=`). Screenshots go to
+// target/e2e/3d-*.png.
 
 import { mkdirSync } from 'node:fs';
 import { dirname, join, relative, resolve } from 'node:path';
@@ -141,6 +143,16 @@ async function runOne({ renderer, heat, args }) {
     await dropFile(page, 'tri.stl', binaryStl([[[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 0, 0], [0, 1, 0], [0, 0, 1]]]));
     const { report: opened } = await waitForReport(page, (r) => r.three?.mesh === 'tri.stl' && built(r), QUERY_TIMEOUT_MS, 'tri.stl opened');
     check(opened.three.triangles === 2, `tri.stl has 2 triangles (${opened.three.triangles})`);
+
+    // Two structures side by side in 3D, with their tree diagrams, from the address.
+    await page.goto(`${url}?mesh=bunny&structure=aabb-tree&compare=kd-tree&panels=controls,stepper,tree`, { waitUntil: 'load' });
+    const lanes = (r) => built(r) && r.playback?.length === 2 && r.playback.every((p) => p.steps > 0);
+    const { report: compared } = await waitForReport(page, lanes, BUILD_TIMEOUT_MS, 'two structures over the bunny');
+    const names = compared.playback.map((p) => p.structure).join(' and ');
+    check(names === 'AABB tree and k-d tree', `the lanes are the AABB tree and the k-d tree (${names})`);
+    check(compared.playback.every((p) => p.agrees), `both answer as brute force: ${JSON.stringify(compared.playback)}`);
+    await page.waitForTimeout(500);
+    await shoot(page, `3d-${renderer}-compare.png`);
     check(problems.length === 0, `the page reported: ${problems.join('; ')}`);
     return {
       renderer,
