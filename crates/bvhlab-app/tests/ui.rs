@@ -369,6 +369,42 @@ fn select_moves_and_deletes_a_shape() {
     h.get_by_label("Delete selected (0)");
 }
 
+/// Issue 21: overlays from one section buried the next idea. A preset is a section of the
+/// lecture, so it starts without the last one's volumes, slab test, SAT boxes, ray or point.
+#[test]
+fn a_preset_starts_its_section_without_the_last_sections_overlays() {
+    let mut h = lab();
+    choose(&mut h, "Preset", "Bounding volumes compared (§2)");
+    assert!(
+        h.state().lab().two().display.volumes,
+        "§2 shows its volumes"
+    );
+    let from = screen(&h, Vec2::new(-9.0, -4.0));
+    let to = screen(&h, Vec2::new(8.0, 3.0));
+    drag(&mut h, from, to);
+    click(&mut h, "Slab test of the ray against the AABB");
+    act(&mut h, bvhlab_app::model::Action2d::SetTool(Tool::Obb));
+    let two = h.state().lab().two();
+    assert!(two.display.slab_test && two.obb_pair.is_some() && two.ray.is_some());
+
+    choose(&mut h, "Preset", "k-d tree on a handful of shapes (§3)");
+    let two = h.state().lab().two();
+    assert!(!two.display.volumes, "the volumes are off");
+    assert!(!two.display.slab_test, "the slab test is off");
+    assert!(two.obb_pair.is_none(), "the SAT boxes are gone");
+    assert_ne!(two.tool, Tool::Obb, "the SAT tool is put away");
+    assert!(
+        two.ray.is_none() && two.point.is_none(),
+        "no old ray or point"
+    );
+
+    choose(&mut h, "Preset", "Bounding volumes compared (§2)");
+    assert!(
+        h.state().lab().two().display.volumes,
+        "back in §2, its volumes show"
+    );
+}
+
 #[test]
 fn query_point_shows_brute_forces_nearest_and_k_answers() {
     let mut h = lab();

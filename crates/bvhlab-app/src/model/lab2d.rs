@@ -171,6 +171,10 @@ impl Lab2d {
     }
 
     /// Replaces the scene with `preset`'s, with the structure it is best seen with.
+    ///
+    /// A preset is a section of the lecture: it starts clean, so the last section's
+    /// overlays (the ray and point, the bounding volumes, the slab test, the two SAT boxes)
+    /// do not bury the next idea. The bounding-volume preset shows its volumes.
     fn load_preset(&mut self, preset: Preset) {
         let (scene, settings) = preset.build();
         self.preset = preset;
@@ -179,11 +183,16 @@ impl Lab2d {
         self.selection.clear();
         self.ray = None;
         self.point = None;
-        self.fit_pending = true;
+        self.obb_pair = None;
+        if self.tool == Tool::Obb {
+            self.tool = Tool::Ray;
+        }
+        self.display.slab_test = false;
+        self.display.volumes = preset == Preset::BoundingVolumes;
         if preset == Preset::BoundingVolumes {
             self.selection = vec![0];
-            self.display.volumes = true;
         }
+        self.fit_pending = true;
     }
 
     /// Carries out `action`, with the rules that go with it; what the status line says
