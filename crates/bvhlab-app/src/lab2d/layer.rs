@@ -39,7 +39,7 @@ pub struct StaticLayer {
 impl StaticLayer {
     /// Tessellates `shapes` into one mesh, culled to `clip`, as egui would each frame.
     ///
-    /// Above [`FEATHERING_LIMIT`] shapes the edges are not anti-aliased: feathering doubles
+    /// Above `FEATHERING_LIMIT` shapes the edges are not anti-aliased: feathering doubles
     /// the vertices, and egui copies and uploads every vertex each frame.
     pub fn tessellate(
         key: LayerKey,

@@ -1,7 +1,7 @@
 //! The 2D half's view: the canvas. Pointer input for the active tool becomes actions
-//! ([`input`]), pan and zoom too; the lab is drawn from its state ([`draw`]: structure,
+//! (`input.rs`), pan and zoom too; the lab is drawn from its state (`draw.rs`: structure,
 //! marks, scene, bounding volumes, queries, handles; [`overlay`]: the playback's step), with
-//! the structure and scene tessellated once per view ([`layer`]).
+//! the structure and scene tessellated once per view (`layer.rs`).
 //!
 //! Mirrors [`crate::lab3d`]: `mod.rs` the widget, `input.rs` the pointer, `draw.rs` what is
 //! drawn, `overlay.rs` the playback's state on top.

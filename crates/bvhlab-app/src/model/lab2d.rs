@@ -1,6 +1,6 @@
 //! The 2D half: the scene the student draws, the selection and its bounding volumes, the
 //! canvas's pan and zoom, the ray and the query point, what is drawn, and the structures
-//! ([`Half`]) built on the scene's segments. Its rules ([`Lab2d::apply`]) say what each
+//! ([`Half`]) built on the scene's segments. Its rules (`Lab2d::apply`) say what each
 //! [`Action2d`] changes besides itself.
 
 use bvhlab::glam::Vec2;

@@ -1,6 +1,6 @@
 //! The 3D half: the mesh (built-in, or a file the student opened), the orbit camera, the ray
 //! and the query point, what is drawn, the heat map's settings, and the structures ([`Half`])
-//! built on the mesh's triangles. Its rules ([`Lab3d::apply`]) say what each [`Action3d`]
+//! built on the mesh's triangles. Its rules (`Lab3d::apply`) say what each [`Action3d`]
 //! changes besides itself.
 //!
 //! A mesh loads on the frame after it is asked for (so the page can say "loading" first),
