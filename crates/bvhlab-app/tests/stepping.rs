@@ -251,6 +251,65 @@ fn the_tree_and_the_canvas_find_each_others_nodes() {
     );
 }
 
+/// Issue 21: the lecture's construction question (median against SAH) compares two build
+/// options of one structure. Both lanes are named by what differs, build different trees, and
+/// step the build side by side, the SAH lane with its cost curve.
+#[test]
+fn median_against_sah_compares_two_builds_of_one_structure() {
+    use bvhlab::structure::bvh::SplitMethod;
+    use bvhlab_app::model::HalfAction;
+    use bvhlab_app::model::structures::BuildSettings;
+
+    let mut h = lab();
+    let sah = BuildSettings {
+        kind: StructureKind::AabbTree,
+        bvh_split: SplitMethod::BinnedSah,
+        ..BuildSettings::default()
+    };
+    act(&mut h, HalfAction::SetStructure(sah));
+    act(
+        &mut h,
+        HalfAction::SetCompare(Some(BuildSettings {
+            bvh_split: SplitMethod::SpatialMedian,
+            ..sah
+        })),
+    );
+    act(&mut h, HalfAction::SetTask(Task::Build));
+    settle(&mut h);
+    assert!(shows(&h, "AABB tree, SAH split"), "{:?}", labels(&h));
+    assert!(shows(
+        &h,
+        "AABB tree, split at the middle of the longest axis"
+    ));
+    let half = &h.state().lab().two().half;
+    let [a, b] = [half.lane_at(0), half.lane_at(1)].map(|l| {
+        l.current(h.state().lab().two().scene.revision())
+            .expect("built")
+            .stats
+            .clone()
+    });
+    assert_eq!(a.primitives, b.primitives);
+    assert_ne!(
+        (a.nodes, a.max_depth, &a.leaf_sizes),
+        (b.nodes, b.max_depth, &b.leaf_sizes),
+        "median and SAH build different trees on 200 random segments"
+    );
+    // Step into the build: the root's split is logged in both lanes.
+    click(&mut h, "|<");
+    for _ in 0..3 {
+        click(&mut h, ">");
+    }
+    assert!(
+        shows(&h, "SAH cost of each candidate plane"),
+        "the SAH lane's cost curve: {:?}",
+        labels(&h)
+    );
+    assert!(
+        shows(&h, "median splits have none"),
+        "the median lane says why it has no curve"
+    );
+}
+
 #[test]
 fn two_structures_step_together() {
     let mut h = lab();

@@ -106,11 +106,10 @@ pub fn canvas(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
             hover,
         );
         if lab.half.compare.is_some() {
-            let name = lab.half.lane_at(i).settings.kind.label();
             clipped.text(
                 rect.left_top() + egui::vec2(8.0, 6.0),
                 egui::Align2::LEFT_TOP,
-                name,
+                lab.half.lane_name(i),
                 egui::FontId::proportional(15.0),
                 crate::paint::colors::QUERY,
             );

@@ -157,7 +157,7 @@ pub fn view(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
             painter.text(
                 half.left_top() + egui::vec2(8.0, 6.0),
                 Align2::LEFT_TOP,
-                lane.settings.kind.label_in(3),
+                lab.half.lane_name(i),
                 FontId::proportional(15.0),
                 colors::QUERY,
             );

@@ -7,6 +7,7 @@ use bvhlab::{Aabb, Bvh, Obb, Ray, SpatialIndex, Sphere};
 
 use super::dimension::LabPrimitive;
 use super::lane::{BuildBudget, Lane};
+use super::lane_name::lane_name;
 use super::playback::Playback;
 use super::question::{Task, Variant};
 use super::recording::Question;
@@ -59,6 +60,19 @@ impl<P: LabPrimitive> Half<P> {
             (1, Some(other)) => other,
             _ => &self.lane,
         }
+    }
+
+    /// What lane `index` is called beside the other (see [`lane_name`]).
+    pub fn lane_name(&self, index: usize) -> String {
+        let other = self
+            .lanes()
+            .nth(1 - index.min(1))
+            .filter(|_| self.compare.is_some());
+        lane_name(
+            &self.lane_at(index).settings,
+            other.map(|l| &l.settings),
+            <P::Point as bvhlab::Vector>::DIM,
+        )
     }
 
     /// How many lanes are shown.

@@ -33,6 +33,7 @@ pub mod heat;
 pub mod lab2d;
 pub mod lab3d;
 pub mod lane;
+pub mod lane_name;
 pub mod mesh;
 pub mod orbit_camera;
 pub mod outcome;

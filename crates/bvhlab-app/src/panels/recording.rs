@@ -61,7 +61,7 @@ pub fn recording_state<V: Vector>(
     frontier_view(snap, ui);
     best_view(rec.question.task, snap, ui);
     if q.task == Task::Build {
-        super::split::split_view(rec, kind, snap, ui);
+        super::split::split_view(rec, kind, snap, index, ui);
     }
 }
 

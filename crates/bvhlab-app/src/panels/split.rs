@@ -11,11 +11,13 @@ use crate::model::snapshot::Snapshot;
 use crate::model::structures::StructureKind;
 use crate::paint::colors;
 
-/// The current node's split and, where the builder logged one, its SAH cost curve.
+/// The current node's split and, where the builder logged one, its SAH cost curve, for
+/// lane `lane` (each lane's plot keeps its own zoom: two lanes step the same node ids).
 pub fn split_view<V: Vector>(
     rec: &Recording<V>,
     kind: StructureKind,
     snap: &Snapshot<V>,
+    lane: usize,
     ui: &mut egui::Ui,
 ) {
     let Some(node) = snap.current else {
@@ -60,8 +62,10 @@ pub fn split_view<V: Vector>(
     };
     if record.bin_costs.is_empty() {
         ui.label(format!(
-            "{:?} split: no cost curve (leaf cost {:.0}).",
-            record.method, record.leaf_cost
+            "{}: no cost curve, median splits have none; only the SAH split weighs \
+             candidate planes by cost (leaf cost here {:.0}).",
+            crate::model::lane_name::bvh_split_words(record.method),
+            record.leaf_cost
         ));
         return;
     }
@@ -88,7 +92,7 @@ pub fn split_view<V: Vector>(
             f64::from(*record.bin_costs.get(i)?),
         ])
     });
-    Plot::new(("sah curve", node.0))
+    Plot::new(("sah curve", lane, node.0))
         .height(150.0)
         .allow_scroll(false)
         .allow_drag(false)

@@ -74,11 +74,10 @@ where
     ui.separator();
     super::export::export_buttons(cx, ui);
     ui.separator();
-    let dim = dim_of::<P>();
     for (i, lane) in half.lanes().enumerate() {
         if half.lane_count() > 1 {
             ui.label(
-                RichText::new(lane.settings.kind.label_in(dim))
+                RichText::new(half.lane_name(i))
                     .strong()
                     .color(colors::QUERY),
             );
