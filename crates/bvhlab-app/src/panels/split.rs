@@ -5,6 +5,7 @@
 use egui_plot::{HLine, Line, Plot, PlotPoints, Points, VLine};
 
 use bvhlab::Vector;
+use bvhlab::structure::SplitMethod;
 
 use crate::model::recording::Recording;
 use crate::model::snapshot::Snapshot;
@@ -60,8 +61,9 @@ pub fn split_view<V: Vector>(
     };
     if record.bin_costs.is_empty() {
         ui.label(format!(
-            "{:?} split: no cost curve (leaf cost {:.0}).",
-            record.method, record.leaf_cost
+            "{} split: no cost curve (leaf cost {:.0}).",
+            method_name(record.method),
+            record.leaf_cost
         ));
         return;
     }
@@ -107,4 +109,13 @@ pub fn split_view<V: Vector>(
                 );
             }
         });
+}
+
+/// A BVH split method in the lecture's words.
+fn method_name(method: SplitMethod) -> &'static str {
+    match method {
+        SplitMethod::SpatialMedian => "Spatial median (the middle of the longest axis)",
+        SplitMethod::ObjectMedian => "Object median (half the primitives on each side)",
+        SplitMethod::BinnedSah => "SAH (binned)",
+    }
 }
