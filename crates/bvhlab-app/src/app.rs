@@ -101,6 +101,8 @@ impl LabApp {
     pub fn show(&mut self, ui: &mut egui::Ui) {
         let dt = ui.input(|i| f64::from(i.stable_dt));
         self.ui.linked = self.ui.hovered.take();
+        // The bounding volumes table says again this frame which row is hovered.
+        self.ui.canvas.volume_hover = None;
         self.ui.clock.tick(Instant::now());
         // What happened since the last frame: time passed, keys, files, screenshots.
         let mut actions = vec![Action::Tick {

@@ -40,6 +40,40 @@ pub mod colors {
     pub const SLAB_X: Color32 = Color32::from_rgb(255, 100, 100);
     /// The y slab.
     pub const SLAB_Y: Color32 = Color32::from_rgb(110, 160, 255);
+
+    /// Each of §2's bounding volumes: its outline on the canvas, its swatch in the table and
+    /// its legend entry. No two volumes share a colour, and none is the tree's boxes' blue
+    /// ([`STRUCTURE`]), the selection's yellow ([`SELECTED`]) or the ray's cyan ([`QUERY`]).
+    pub fn volume(kind: bvhlab::FitKind) -> Color32 {
+        use bvhlab::FitKind;
+        match kind {
+            // Orange: the lecture's sphere.
+            FitKind::SphereCentroid => Color32::from_rgb(255, 130, 30),
+            // Pink.
+            FitKind::SphereRitter => Color32::from_rgb(255, 120, 210),
+            // White: the minimal sphere.
+            FitKind::SphereWelzl => Color32::from_rgb(245, 245, 245),
+            // Teal.
+            FitKind::Aabb => Color32::from_rgb(0, 205, 160),
+            // Lime.
+            FitKind::Obb => Color32::from_rgb(165, 235, 60),
+            // Violet.
+            FitKind::ConvexHull => Color32::from_rgb(185, 130, 255),
+        }
+    }
+
+    /// A volume's short name in the canvas's legend.
+    pub fn volume_name(kind: bvhlab::FitKind) -> &'static str {
+        use bvhlab::FitKind;
+        match kind {
+            FitKind::SphereCentroid => "centroid sphere",
+            FitKind::SphereRitter => "Ritter sphere",
+            FitKind::SphereWelzl => "Welzl sphere",
+            FitKind::Aabb => "AABB",
+            FitKind::Obb => "OBB (PCA)",
+            FitKind::ConvexHull => "convex hull",
+        }
+    }
 }
 
 /// Turns world geometry into egui shapes in screen space, collected so that the caller can
@@ -235,6 +269,16 @@ pub fn clipped_plane(
 /// What the colours of the view mean, at the top right of `rect`; `tested` names what a
 /// primitive test is of ("tested segment", "tested triangle").
 pub fn legend(painter: &egui::Painter, rect: egui::Rect, tested: &str) {
+    legend_with(painter, rect, tested, &[]);
+}
+
+/// [`legend`], followed by `more` entries (the bounding volumes drawn on the 2D canvas).
+pub fn legend_with(
+    painter: &egui::Painter,
+    rect: egui::Rect,
+    tested: &str,
+    more: &[(Color32, &str)],
+) {
     use egui::{Align2, FontId};
     let entries = [
         (colors::VISITED, "visited"),
@@ -246,7 +290,7 @@ pub fn legend(painter: &egui::Painter, rect: egui::Rect, tested: &str) {
         (colors::ANSWER, "answer"),
     ];
     let mut at = rect.right_top() + egui::vec2(-120.0, 10.0);
-    for (color, label) in entries {
+    for &(color, label) in entries.iter().chain(more) {
         painter.rect_filled(
             egui::Rect::from_min_size(at, egui::vec2(10.0, 10.0)),
             2.0,

@@ -13,6 +13,17 @@ use egui_kittest::Harness;
 mod common;
 use common::*;
 
+/// The counters' row names, as each structure names them (a grid visits cells; a BVH tests
+/// bounding volumes, a grid or quadtree cells, a k-d or BSP tree cells and planes).
+const COUNTER_NAMES: [&str; 6] = [
+    "nodes visited",
+    "cells visited",
+    "BV tests",
+    "cell tests",
+    "cell and plane tests",
+    "primitive tests",
+];
+
 /// The "Step through" panel's counters: (name, this step, so far, total, brute force).
 fn step_counters(h: &Harness<'_, LabApp>) -> Vec<(String, String, String, String, String)> {
     let all = labels(h);
@@ -23,7 +34,7 @@ fn step_counters(h: &Harness<'_, LabApp>) -> Vec<(String, String, String, String
     let all = &all[start..];
     let mut rows = Vec::new();
     for (i, l) in all.iter().enumerate() {
-        if ["nodes visited", "BV tests", "primitive tests"].contains(&l.as_str()) {
+        if COUNTER_NAMES.contains(&l.as_str()) {
             let at = |j: usize| all.get(i + j).cloned().unwrap_or_default();
             rows.push((l.clone(), at(1), at(2), at(3), at(4)));
         }
@@ -57,7 +68,8 @@ fn check_step(h: &Harness<'_, LabApp>, step: usize) {
     // The sentence names the step's event.
     match events.last() {
         Some(e) => {
-            label_containing(h, &format!("step {step}: {}", describe(e)));
+            let said = describe(e, kind, q.task, q.variant);
+            label_containing(h, &format!("step {step}: {said}"));
         }
         None => {
             label_containing(h, "step 0 of ");

@@ -53,7 +53,16 @@ fn counter_rows(h: &Harness<'_, LabApp>) -> Vec<(String, u64, u64)> {
     }
     let mut rows = Vec::new();
     for (i, l) in all.iter().enumerate() {
-        if ["nodes visited", "BV tests", "primitive tests"].contains(&l.as_str()) {
+        if [
+            "nodes visited",
+            "cells visited",
+            "BV tests",
+            "cell tests",
+            "cell and plane tests",
+            "primitive tests",
+        ]
+        .contains(&l.as_str())
+        {
             let n = |j: usize| {
                 all[i + j]
                     .parse::<u64>()
@@ -467,7 +476,7 @@ fn bounding_volumes_preset_fits_and_the_slab_tests_nan() {
     let app = h.state();
     assert_eq!(app.lab().two().scene.shapes().len(), 1);
     assert_eq!(app.lab().two().selection, vec![0]);
-    label_containing(&h, &scene_line(1, 14));
+    label_containing(&h, &scene_line(1, 10));
     assert_eq!(
         app.lab()
             .two()
@@ -476,7 +485,7 @@ fn bounding_volumes_preset_fits_and_the_slab_tests_nan() {
             .structure
             .as_ref()
             .map(|b| b.stats.primitives),
-        Some(14),
+        Some(10),
         "the structure is rebuilt on the preset's scene"
     );
 
@@ -504,7 +513,7 @@ fn bounding_volumes_preset_fits_and_the_slab_tests_nan() {
     }
 
     // A ray across the blob, then the slab test and its degenerate case.
-    assert!(shows(&h, "Draw a ray (Ray tool) to run the ray tests."));
+    assert!(shows(&h, "Draw a ray (Ray tool) to run the slab test."));
     let from = screen(&h, Vec2::new(-9.0, -4.0));
     let to = screen(&h, Vec2::new(8.0, 3.0));
     drag(&mut h, from, to);
@@ -512,7 +521,7 @@ fn bounding_volumes_preset_fits_and_the_slab_tests_nan() {
     click(&mut h, "Slab test of the ray against the AABB");
     assert!(h.state().lab().two().display.slab_test);
     assert!(!shows(&h, "0/0 = NaN"));
-    click(&mut h, "Ray parallel to x");
+    click(&mut h, "Ray parallel to x (y_d = 0)");
     let r = h.state().lab().two().ray.expect("ray");
     assert_eq!(r.origin.y, r.target.y);
     label_containing(&h, "the ray is parallel to the y slab");
@@ -589,11 +598,12 @@ fn degenerate_rays_and_an_empty_scene_get_messages_not_panics() {
     let err = handles.ray().expect_err("zero length");
     assert!(h.state().lab().two().half.lane.ray_outcome.is_none());
     assert!(!shows(&h, "Hit: primitive"));
-    // Both the §2 ray tests and the Queries panel say why there is no answer.
+    // The §2 ray tests (ray-sphere and the slab test, each in its section) and the Queries
+    // panel say why there is no answer.
     let no_ray = format!("No ray: {err}");
     assert_eq!(
         labels(&h).iter().filter(|l| l.starts_with(&no_ray)).count(),
-        2,
+        3,
         "{:#?}",
         labels(&h)
     );

@@ -3,19 +3,18 @@
 //! volumes, queries, handles and the drag in progress.
 
 use bvhlab::glam::Vec2;
-use bvhlab::{Aabb2, BoundingVolume, NodeId, NodeOutline, Ray2, Segment2};
+use bvhlab::{Aabb2, BoundingVolume, FitKind, NodeId, NodeOutline, Ray2, Segment2};
 use egui::{Color32, Stroke};
 
 use super::interaction::Interaction;
 use super::layer::{LayerKey, StaticLayer};
-use super::{CanvasState, Screen, overlay};
+use super::{CanvasState, Screen, overlay, volumes};
 use crate::model::build_job::Structure;
 use crate::model::lab2d::Lab2d;
 use crate::model::lane::Lane;
 use crate::model::outcome::NodeMark;
 use crate::model::structures::StructureKind;
 use crate::model::tools::Tool;
-use crate::model::volumes::{ObbPair, SlabExplain};
 use crate::paint::{WorldPainter, clipped_plane, colors};
 use crate::pseudocode::Task;
 
@@ -72,11 +71,12 @@ pub(super) fn draw(
     }
     let mut wp = WorldPainter::new(&screen);
     let hovered = hovered.filter(|(at, _)| *at == index).map(|(_, node)| node);
-    query_shapes(lab, index, hovered, &mut wp, painter);
+    let volume = canvas.volume_hover;
+    query_shapes(lab, index, hovered, volume, &mut wp, painter);
     if lab.tool == Tool::Obb
         && let Some(pair) = &lab.obb_pair
     {
-        draw_obb_pair(pair, &mut wp);
+        volumes::draw_obb_pair(pair, &mut wp);
     }
     draw_in_progress(
         &canvas.interaction,
@@ -96,7 +96,7 @@ pub fn picture(
 ) -> Vec<egui::Shape> {
     let mut wp = WorldPainter::new(&screen);
     static_shapes(lab, index, &mut wp);
-    query_shapes(lab, index, None, &mut wp, painter);
+    query_shapes(lab, index, None, None, &mut wp, painter);
     wp.shapes
 }
 
@@ -111,11 +111,13 @@ fn static_shapes(lab: &Lab2d, index: usize, wp: &mut WorldPainter<'_>) {
 }
 
 /// What changes with the query and the playback step: a build's progress or the query's
-/// marks and step, the `hovered` node, the bounding volumes, the ray and the point.
+/// marks and step, the `hovered` node, the bounding volumes (the `volume` hovered in their
+/// table lit), the ray and the point.
 fn query_shapes(
     lab: &Lab2d,
     index: usize,
     hovered: Option<NodeId>,
+    volume: Option<FitKind>,
     wp: &mut WorldPainter<'_>,
     painter: &egui::Painter,
 ) {
@@ -130,8 +132,8 @@ fn query_shapes(
     if let Some(node) = hovered {
         overlay::draw_hovered(lab, this, node, wp);
     }
-    if index == 0 && (lab.display.volumes || lab.display.slab_test) {
-        draw_volumes(lab, wp);
+    if index == 0 && (lab.display.volumes || lab.display.slab_test || volume.is_some()) {
+        volumes::draw_volumes(lab, volume, wp);
     }
     draw_queries(lab, this, wp, painter);
 }
@@ -284,7 +286,7 @@ fn draw_scene(lab: &Lab2d, lane: &Lane<Segment2>, wp: &mut WorldPainter<'_>) {
 }
 
 /// The far end of the ray on screen: where it leaves the visible part of the world.
-fn visible_end(ray: &Ray2, screen: &Screen) -> Vec2 {
+pub(super) fn visible_end(ray: &Ray2, screen: &Screen) -> Vec2 {
     let (lo, hi) = screen.visible_world();
     let visible = Aabb2::new(lo, hi);
     let t = visible
@@ -338,133 +340,6 @@ fn draw_queries(
     if let Some(p) = lab.point {
         wp.dot(p, 5.0, colors::QUERY);
         wp.text(fonts, p, " q", colors::QUERY);
-    }
-}
-
-fn draw_volumes(lab: &Lab2d, wp: &mut WorldPainter<'_>) {
-    let Some(fits) = lab.fits() else { return };
-    let t = &lab.volumes;
-    if lab.display.volumes {
-        let stroke = |c: Color32| Stroke::new(1.8, c);
-        if t.hull {
-            wp.polygon(
-                fits.hull.vertices(),
-                stroke(Color32::from_rgb(200, 120, 255)),
-            );
-        }
-        if t.aabb {
-            wp.aabb(&fits.aabb, stroke(Color32::from_rgb(120, 200, 255)));
-        }
-        if t.obb {
-            wp.obb(&fits.obb, stroke(Color32::from_rgb(120, 255, 160)));
-            // The principal axes, scaled by the standard deviation along each.
-            for (axis, var) in fits
-                .pca
-                .axes
-                .iter()
-                .zip([fits.pca.variances.x, fits.pca.variances.y])
-            {
-                let len = var.max(0.0).sqrt();
-                wp.line(
-                    fits.pca.mean - *axis * len,
-                    fits.pca.mean + *axis * len,
-                    Stroke::new(1.0, Color32::from_rgb(120, 255, 160)),
-                );
-            }
-        }
-        if t.centroid {
-            wp.sphere(&fits.centroid, stroke(Color32::from_rgb(255, 200, 120)));
-            wp.dot(fits.centroid.center, 3.0, Color32::from_rgb(255, 200, 120));
-        }
-        if t.ritter {
-            wp.sphere(&fits.ritter, stroke(Color32::from_rgb(255, 150, 150)));
-        }
-        if t.welzl {
-            wp.sphere(&fits.welzl, stroke(Color32::from_rgb(255, 240, 120)));
-        }
-    }
-    if lab.display.slab_test
-        && let Some(ray) = lab.valid_ray()
-    {
-        draw_slab_test(&fits.aabb, &ray, wp);
-    }
-}
-
-fn draw_slab_test(aabb: &Aabb2, ray: &Ray2, wp: &mut WorldPainter<'_>) {
-    if aabb.is_empty() {
-        return;
-    }
-    let (lo, hi) = wp.screen.visible_world();
-    let thin = |c: Color32| Stroke::new(1.0, c.gamma_multiply(0.7));
-    for x in [aabb.min.x, aabb.max.x] {
-        wp.line(Vec2::new(x, lo.y), Vec2::new(x, hi.y), thin(colors::SLAB_X));
-    }
-    for y in [aabb.min.y, aabb.max.y] {
-        wp.line(Vec2::new(lo.x, y), Vec2::new(hi.x, y), thin(colors::SLAB_Y));
-    }
-    let explain = SlabExplain::new(aabb, ray);
-    let t_far_visible = (visible_end(ray, wp.screen) - ray.origin()).length() / ray.dir().length();
-    let clamp = |t: f32| t.clamp(-t_far_visible, t_far_visible);
-    let normal = ray.dir().normalize().perp();
-    let offset = |px: f32| normal * wp.screen.world_length(px);
-    for (axis, color, px) in [(0, colors::SLAB_X, 7.0), (1, colors::SLAB_Y, -7.0)] {
-        let a = &explain.axes[axis];
-        if a.t_min <= a.t_max {
-            wp.line(
-                ray.at(clamp(a.t_min)) + offset(px),
-                ray.at(clamp(a.t_max)) + offset(px),
-                Stroke::new(4.0, color),
-            );
-        }
-    }
-    if explain.hits() {
-        wp.line(
-            ray.at(clamp(explain.t_enter)),
-            ray.at(clamp(explain.t_exit)),
-            Stroke::new(5.0, colors::ANSWER),
-        );
-    }
-}
-
-fn draw_obb_pair(pair: &ObbPair, wp: &mut WorldPainter<'_>) {
-    let tests = pair.tests();
-    let separating = tests.iter().find(|t| t.separates());
-    let color = if separating.is_some() {
-        colors::VISITED
-    } else {
-        colors::CULLED
-    };
-    for pose in [pair.a, pair.b] {
-        let obb = pose.obb();
-        wp.convex_fill(&crate::paint::obb_corners(&obb), color.gamma_multiply(0.12));
-        wp.obb(&obb, Stroke::new(2.0, color));
-        wp.line(pose.center, pose.handle(), Stroke::new(1.0, color));
-        wp.dot(pose.handle(), 5.0, color);
-    }
-    // The projections on the separating axis (or, when they overlap, on every axis).
-    let shown: Vec<_> = separating.map_or_else(|| tests.clone(), |t| vec![*t]);
-    let mid = (pair.a.center + pair.b.center) * 0.5;
-    let reach = pair.a.half.length()
-        + pair.b.half.length()
-        + (pair.a.center - pair.b.center).length() * 0.5;
-    for (k, test) in shown.iter().enumerate() {
-        let axis = test.axis.normalize_or_zero();
-        let base = mid - axis * axis.dot(mid) + axis.perp() * (reach + 0.6 * k as f32 + 0.5);
-        wp.line(
-            base + axis * (axis.dot(mid) - reach * 1.5),
-            base + axis * (axis.dot(mid) + reach * 1.5),
-            Stroke::new(1.0, Color32::GRAY),
-        );
-        for ((lo, hi), shift, c) in [
-            (test.interval_a, 0.12, Color32::from_rgb(255, 200, 120)),
-            (test.interval_b, -0.12, Color32::from_rgb(120, 200, 255)),
-        ] {
-            wp.line(
-                base + axis * lo + axis.perp() * shift,
-                base + axis * hi + axis.perp() * shift,
-                Stroke::new(4.0, c),
-            );
-        }
     }
 }
 

@@ -1,7 +1,8 @@
 //! The 2D half's view: the canvas. Pointer input for the active tool becomes actions
 //! (`input.rs`), pan and zoom too; the lab is drawn from its state (`draw.rs`: structure,
-//! marks, scene, bounding volumes, queries, handles; [`overlay`]: the playback's step), with
-//! the structure and scene tessellated once per view (`layer.rs`).
+//! marks, scene, queries, handles; [`overlay`]: the playback's step; `volumes`: §2's
+//! bounding volumes, slab test and separating-axis boxes), with the structure and scene
+//! tessellated once per view (`layer.rs`).
 //!
 //! Mirrors [`crate::lab3d`]: `mod.rs` the widget, `input.rs` the pointer, `draw.rs` what is
 //! drawn, `overlay.rs` the playback's state on top.
@@ -12,6 +13,7 @@ pub mod interaction;
 mod layer;
 pub mod overlay;
 mod screen;
+mod volumes;
 
 pub use interaction::Interaction;
 pub use layer::StaticLayer;
@@ -31,6 +33,9 @@ pub struct CanvasState {
     pub interaction: Interaction,
     /// The whole drawing area (both halves when comparing), in points.
     pub rect: egui::Rect,
+    /// The bounding volume whose row the pointer is over in the bounding volumes table: the
+    /// canvas draws it lit. Set by the panel each frame (drawn before the canvas).
+    pub volume_hover: Option<bvhlab::FitKind>,
     /// The structure and scene of each lane, tessellated for the view.
     layers: [Option<StaticLayer>; 2],
 }
@@ -40,6 +45,7 @@ impl Default for CanvasState {
         Self {
             interaction: Interaction::None,
             rect: egui::Rect::NOTHING,
+            volume_hover: None,
             layers: [None, None],
         }
     }
@@ -115,7 +121,16 @@ pub fn canvas(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
             );
         }
     }
-    crate::paint::legend(&painter, response.rect, "tested segment");
+    let volumes: Vec<_> = volumes::shown_volumes(lab)
+        .into_iter()
+        .map(|k| {
+            (
+                crate::paint::colors::volume(k),
+                crate::paint::colors::volume_name(k),
+            )
+        })
+        .collect();
+    crate::paint::legend_with(&painter, response.rect, "tested segment", &volumes);
     if lab.half.compare.is_some() {
         let x = halves[0].right() + 2.0;
         painter.vline(

@@ -170,6 +170,18 @@ impl Lab2d {
         );
     }
 
+    /// What "Fit view" frames: the scene and, while they are shown, its bounding volumes.
+    fn framed(&self) -> Option<(Vec2, Vec2)> {
+        let (lo, hi) = self.scene.bounds()?;
+        match self.fits() {
+            Some(fits) if self.display.volumes => {
+                let volumes = fits.bounds(&self.volumes);
+                Some((lo.min(volumes.min), hi.max(volumes.max)))
+            }
+            _ => Some((lo, hi)),
+        }
+    }
+
     /// Replaces the scene with `preset`'s, with the structure it is best seen with.
     ///
     /// A preset is a section of the lecture: it starts clean, so the last section's
@@ -227,7 +239,7 @@ impl Lab2d {
                 self.camera = camera;
             }
             Action2d::FrameScene(size) => {
-                if let Some((lo, hi)) = self.scene.bounds()
+                if let Some((lo, hi)) = self.framed()
                     && let Some(camera) = Camera2d::framing(lo, hi, size)
                 {
                     self.camera = camera;

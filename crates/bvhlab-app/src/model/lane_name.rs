@@ -55,7 +55,7 @@ pub fn lane_name(settings: &BuildSettings, other: Option<&BuildSettings>, dim: u
 }
 
 /// The BVH split method in the lecture's words.
-pub fn bvh_split_words(split: SplitMethod) -> &'static str {
+fn bvh_split_words(split: SplitMethod) -> &'static str {
     match split {
         SplitMethod::SpatialMedian => "split at the middle of the longest axis",
         SplitMethod::ObjectMedian => "object-median split",

@@ -8,7 +8,8 @@ use super::structures::{BuildSettings, KdSplit, StructureKind};
 /// The preset scenes, in menu order.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Preset {
-    /// §2: one elongated, tilted object, where sphere, AABB, OBB and hull differ most.
+    /// §2: one elongated, tilted, lopsided object, where the spheres, AABB, OBB and hull
+    /// differ most.
     BoundingVolumes,
     /// §3, uniform grid: a long triangle that lands in several cells ("Duplicate Triangle").
     DuplicateTriangle,
@@ -131,18 +132,21 @@ fn shape(kind: ShapeKind, points: &[[f32; 2]]) -> Shape {
     }
 }
 
-/// An elongated, tilted polygon: its AABB and centroid sphere are loose, its OBB tight.
+/// A lopsided, tilted teardrop: a round head with many vertices and a long tail ending in
+/// one. Its AABB is loose and its OBB tight; the lecture's centroid sphere is centred among
+/// the head's vertices, so its radius reaches out to the tail's tip and it is visibly looser
+/// than Ritter's and Welzl's spheres, which span the shape end to end.
 fn tilted_blob() -> Shape {
-    let (angle, a, b) = (0.5f32, 8.0f32, 2.2f32);
-    let (sin, cos) = angle.sin_cos();
-    let points = (0..14)
-        .map(|i| {
-            let s = i as f32 / 14.0 * std::f32::consts::TAU;
-            // A lopsided ellipse, so that the centroid is not the box centre.
-            let r = 1.0 + 0.25 * (2.0 * s).cos() + 0.15 * s.sin();
-            let (x, y) = (a * s.cos() * r, b * s.sin() * r);
-            Vec2::new(x * cos - y * sin, x * sin + y * cos)
-        })
+    let (sin, cos) = 0.5f32.sin_cos();
+    let tip = Vec2::new(9.0, 0.0);
+    // The head: an arc of radius 2.5 around (-4, 0), from 50° round the back to 310°.
+    let head = (0..=8).map(|i| {
+        let angle = (50.0 + 260.0 * i as f32 / 8.0).to_radians();
+        Vec2::new(-4.0, 0.0) + Vec2::from_angle(angle) * 2.5
+    });
+    let points = std::iter::once(tip)
+        .chain(head)
+        .map(|p| Vec2::new(p.x * cos - p.y * sin, p.x * sin + p.y * cos))
         .collect();
     Shape {
         kind: ShapeKind::Polygon,
@@ -225,5 +229,22 @@ mod tests {
             Preset::TenThousand.build().0.primitives().segments.len(),
             10_000
         );
+    }
+
+    #[test]
+    fn the_bounding_volumes_presets_centroid_sphere_is_visibly_looser() {
+        let (scene, _) = Preset::BoundingVolumes.build();
+        let fits = super::super::volumes::Fits::of(&scene.vertices(&[])).expect("a shape");
+        let (centroid, ritter, welzl) =
+            (fits.centroid.radius, fits.ritter.radius, fits.welzl.radius);
+        assert!(
+            centroid >= 1.15 * welzl,
+            "the centroid sphere ({centroid}) is at least 15 % larger than Welzl's ({welzl})"
+        );
+        assert!(
+            centroid >= 1.15 * ritter,
+            "{centroid} against Ritter's {ritter}"
+        );
+        assert!(ritter >= welzl - 1e-4, "Welzl's is the smallest");
     }
 }

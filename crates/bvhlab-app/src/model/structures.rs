@@ -74,6 +74,25 @@ impl StructureKind {
     pub fn is_bvh(self) -> bool {
         matches!(self, Self::SphereTree | Self::AabbTree | Self::ObbTree)
     }
+
+    /// What its counters call a visited node: a grid's are its cells.
+    pub fn nodes_name(self) -> &'static str {
+        match self {
+            Self::Grid => "cells visited",
+            _ => "nodes visited",
+        }
+    }
+
+    /// What its counters call a bound test, in the lecture's words: a BVH tests its
+    /// bounding volumes (BVs), a grid and a quadtree their cells, a k-d or BSP tree its
+    /// cells and splitting planes.
+    pub fn bound_tests_name(self) -> &'static str {
+        match self {
+            Self::SphereTree | Self::AabbTree | Self::ObbTree | Self::BruteForce => "BV tests",
+            Self::Quadtree | Self::Grid => "cell tests",
+            Self::KdTree | Self::Bsp => "cell and plane tests",
+        }
+    }
 }
 
 /// How the k-d tree chooses its planes.

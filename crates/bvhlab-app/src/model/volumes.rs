@@ -45,6 +45,31 @@ impl Fits {
             report: FitReport::for_points(points),
         })
     }
+
+    /// The box around the volumes `shown` (the spheres and the OBB reach beyond the shape's
+    /// own box): what "Fit view" frames besides the scene.
+    pub fn bounds(&self, shown: &VolumeToggles) -> Aabb2 {
+        let mut points = vec![self.aabb.min, self.aabb.max];
+        for (on, sphere) in [
+            (shown.centroid, &self.centroid),
+            (shown.ritter, &self.ritter),
+            (shown.welzl, &self.welzl),
+        ] {
+            if on {
+                points.push(sphere.center - Vec2::splat(sphere.radius));
+                points.push(sphere.center + Vec2::splat(sphere.radius));
+            }
+        }
+        if shown.obb {
+            let [u, v] = self.obb.axes;
+            let (hu, hv) = (u * self.obb.half_extents.x, v * self.obb.half_extents.y);
+            for (a, b) in [(1.0, 1.0), (1.0, -1.0), (-1.0, 1.0), (-1.0, -1.0)] {
+                points.push(self.obb.center + hu * a + hv * b);
+            }
+        }
+        points.retain(|p| p.is_finite());
+        Aabb2::from_points(&points)
+    }
 }
 
 /// Which volumes are drawn.

@@ -6,6 +6,7 @@ use egui::{Grid, RichText};
 use super::{Panel, coords_editor, legend};
 use crate::model::lab2d::Lab2d;
 use crate::model::outcome::NodeMark;
+use crate::model::structures::StructureKind;
 use crate::model::{Action2d, HalfAction};
 use crate::paint::colors;
 use crate::ui_state::Cx;
@@ -81,10 +82,12 @@ fn query_section(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
     }
 }
 
-/// The answer's cost beside brute force's, and whether they agree.
+/// The answer's cost beside brute force's, and whether they agree; the rows are named as
+/// `kind` counts (nodes or cells, BV, cell or plane tests).
 pub fn counters(
     ui: &mut egui::Ui,
     id: &str,
+    kind: StructureKind,
     cost: bvhlab::QueryCost,
     brute: bvhlab::QueryCost,
     agrees: bool,
@@ -95,8 +98,8 @@ pub fn counters(
         ui.strong("brute force");
         ui.end_row();
         for (name, a, b) in [
-            ("nodes visited", cost.nodes_visited, brute.nodes_visited),
-            ("BV tests", cost.bound_tests, brute.bound_tests),
+            (kind.nodes_name(), cost.nodes_visited, brute.nodes_visited),
+            (kind.bound_tests_name(), cost.bound_tests, brute.bound_tests),
             ("primitive tests", cost.prim_tests, brute.prim_tests),
         ] {
             ui.label(name);
@@ -164,7 +167,8 @@ fn ray_answer(lab: &Lab2d, ui: &mut egui::Ui) {
                 ui.label("Miss: the ray hits nothing.");
             }
         }
-        counters(ui, "ray", o.cost, o.brute_cost, o.agrees());
+        let kind = lab.half.lane.settings.kind;
+        counters(ui, "ray", kind, o.cost, o.brute_cost, o.agrees());
     }
 }
 
@@ -190,6 +194,7 @@ fn point_answer(lab: &Lab2d, ui: &mut egui::Ui) {
         if o.nearest.is_empty() {
             ui.label("No primitives: nothing is nearest.");
         }
-        counters(ui, "point", o.cost, o.brute_cost, o.agrees());
+        let kind = lab.half.lane.settings.kind;
+        counters(ui, "point", kind, o.cost, o.brute_cost, o.agrees());
     }
 }

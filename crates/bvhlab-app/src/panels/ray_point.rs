@@ -151,10 +151,13 @@ fn answer(lab: &Lab3d, ui: &mut egui::Ui) {
         },
     );
     if rec.question.task != Task::Build {
+        let kind = lab.half.lane.settings.kind;
         ui.label(format!(
-            "{} nodes, {} BV tests, {} triangle tests (brute force: {} triangle tests)",
+            "{} {}, {} {}, {} triangle tests (brute force: {} triangle tests)",
             rec.cost.nodes_visited,
+            kind.nodes_name(),
             rec.cost.bound_tests,
+            kind.bound_tests_name(),
             rec.cost.prim_tests,
             rec.brute_cost.prim_tests
         ));

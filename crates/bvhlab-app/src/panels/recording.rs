@@ -37,7 +37,11 @@ pub fn recording_state<V: Vector>(
         .checked_sub(1)
         .and_then(|i| crate::pseudocode::line_of(kind, q.task, q.variant, &rec.events, i));
     ui.label(match &snap.event {
-        Some(e) => format!("step {}: {}", snap.step, describe(e)),
+        Some(e) => format!(
+            "step {}: {}",
+            snap.step,
+            describe(e, kind, q.task, q.variant)
+        ),
         None => format!("step 0 of {}: nothing done yet", rec.events.len()),
     });
     if let Some(code) = crate::pseudocode::pseudocode(kind, q.task, q.variant) {
@@ -45,15 +49,16 @@ pub fn recording_state<V: Vector>(
     }
     // A build tests nothing: its counters would all be zero.
     if q.task != Task::Build {
-        counters_table(rec, snap, index, ui);
+        counters_table(rec, snap, kind, index, ui);
     }
     if rec.variant_costs.len() > 1 {
         for (v, c) in &rec.variant_costs {
             ui.label(format!(
-                "{}: {} nodes, {} BV tests, {} primitive tests",
+                "{}: {} nodes, {} {}, {} primitive tests",
                 variant_label(*v),
                 c.nodes_visited,
                 c.bound_tests,
+                kind.bound_tests_name(),
                 c.prim_tests
             ));
         }
@@ -112,6 +117,7 @@ fn code_lines(code: &crate::pseudocode::Pseudocode, line: Option<usize>, ui: &mu
 fn counters_table<V: Vector>(
     rec: &Recording<V>,
     snap: &Snapshot<V>,
+    kind: StructureKind,
     index: usize,
     ui: &mut egui::Ui,
 ) {
@@ -131,13 +137,13 @@ fn counters_table<V: Vector>(
             ui.end_row();
             let rows: [CounterRow; 3] = [
                 (
-                    "nodes visited",
+                    kind.nodes_name(),
                     |c| c.nodes,
                     total.nodes_visited,
                     brute.nodes_visited,
                 ),
                 (
-                    "BV tests",
+                    kind.bound_tests_name(),
                     |c| c.bound_tests,
                     total.bound_tests,
                     brute.bound_tests,
@@ -153,7 +159,7 @@ fn counters_table<V: Vector>(
             let unreported = rec.question.task == Task::Range;
             for (name, get, t, b) in rows {
                 ui.label(name);
-                if unreported && name == "BV tests" {
+                if unreported && name == kind.bound_tests_name() {
                     ui.label("-");
                     ui.label("-");
                 } else {

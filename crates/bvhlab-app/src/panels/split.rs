@@ -5,6 +5,7 @@
 use egui_plot::{HLine, Line, Plot, PlotPoints, Points, VLine};
 
 use bvhlab::Vector;
+use bvhlab::structure::SplitMethod;
 
 use crate::model::recording::Recording;
 use crate::model::snapshot::Snapshot;
@@ -64,7 +65,7 @@ pub fn split_view<V: Vector>(
         ui.label(format!(
             "{}: no cost curve, median splits have none; only the SAH split weighs \
              candidate planes by cost (leaf cost here {:.0}).",
-            crate::model::lane_name::bvh_split_words(record.method),
+            method_name(record.method),
             record.leaf_cost
         ));
         return;
@@ -111,4 +112,13 @@ pub fn split_view<V: Vector>(
                 );
             }
         });
+}
+
+/// A BVH split method in the lecture's words.
+fn method_name(method: SplitMethod) -> &'static str {
+    match method {
+        SplitMethod::SpatialMedian => "Spatial median (the middle of the longest axis)",
+        SplitMethod::ObjectMedian => "Object median (half the primitives on each side)",
+        SplitMethod::BinnedSah => "SAH (binned)",
+    }
 }

@@ -106,26 +106,38 @@ fn task_picker<P: LabPrimitive>(cx: &mut Cx<'_>, half: &Half<P>, ui: &mut egui::
     if task != half.task {
         cx.act(HalfAction::SetTask(task));
     }
+    // Every variant and the radius have their row whatever the task, greyed out where they
+    // do not apply: changing the task moves nothing below (the transport stays put).
     let variants = crate::pseudocode::variants(half.lane.settings.kind, half.task);
-    if variants.len() > 1 {
-        let mut variant = half.variant;
-        ui.horizontal_wrapped(|ui| {
-            for v in variants {
-                ui.radio_value(&mut variant, v, variant_label(v));
+    let mut variant = half.variant;
+    ui.horizontal_wrapped(|ui| {
+        for v in [Variant::Full, Variant::Lecture, Variant::LecturePruned] {
+            let enabled = variants.len() > 1 && variants.contains(&v);
+            let radio = egui::RadioButton::new(variant == v, variant_label(v));
+            if ui
+                .add_enabled(enabled, radio)
+                .on_disabled_hover_text(
+                    "The slides' versions are for a BVH's first hit and nearest point.",
+                )
+                .clicked()
+            {
+                variant = v;
             }
-        });
-        if variant != half.variant {
-            cx.act(HalfAction::SetVariant(variant));
         }
+    });
+    if variant != half.variant {
+        cx.act(HalfAction::SetVariant(variant));
     }
-    if half.task == Task::Range && P::DIMENSION == Dimension::Two {
+    if P::DIMENSION == Dimension::Two {
         let mut radius = half.radius;
         if ui
-            .add(
+            .add_enabled(
+                half.task == Task::Range,
                 egui::Slider::new(&mut radius, 0.0..=50.0)
                     .logarithmic(true)
                     .text("radius"),
             )
+            .on_disabled_hover_text("The radius of \"point: within a radius\".")
             .changed()
         {
             cx.act(HalfAction::SetRadius(radius));

@@ -1,14 +1,16 @@
-//! Lecture §2, bounding volumes: the selection's centroid, Ritter and Welzl spheres, AABB,
-//! PCA box and convex hull with their sizes; the slab test of the ray against the AABB, axis
-//! by axis, with its failure case; the ray-sphere quadratic; two OBBs under the
-//! separating-axis test.
+//! Lecture §2, bounding volumes, in the lecture's order: the selection's centroid, Ritter and
+//! Welzl spheres, AABB, PCA box and convex hull with their sizes and colours (pointing at a
+//! row lights the volume on the canvas); the ray-sphere quadratic for each sphere; the slab
+//! test of the ray against the AABB, axis by axis, with the naive formula beside the core's
+//! and its failure cases; two OBBs under the separating-axis test.
 
-use bvhlab::FitKind;
 use bvhlab::volume::AxisSource;
-use egui::{Grid, RichText};
+use bvhlab::{Aabb2, FitKind};
+use egui::{Grid, RichText, Sense, vec2};
 
 use super::Panel;
 use crate::model::Action2d;
+use crate::model::lab2d::RayHandles;
 use crate::model::tools::Tool;
 use crate::model::volumes::{Fits, SlabExplain};
 use crate::paint::colors;
@@ -51,29 +53,7 @@ fn volumes_section(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
         ui.label("Draw or select a shape to fit volumes to it.");
         return;
     };
-    Grid::new("fits")
-        .striped(true)
-        .show(ui, |ui| {
-            ui.strong("volume");
-            ui.strong("area");
-            ui.strong("perimeter");
-            ui.strong("tightness");
-            ui.end_row();
-            for kind in FitKind::ALL {
-                if let Some(m) = fits.report.get(kind) {
-                    ui.label(kind.label());
-                    ui.label(format!("{:.3}", m.measure));
-                    ui.label(format!("{:.3}", m.boundary_measure));
-                    ui.label(
-                        m.tightness
-                            .map_or("–".to_owned(), |t| format!("{:.0} %", t * 100.0)),
-                    );
-                    ui.end_row();
-                }
-            }
-        })
-        .response
-        .on_hover_text("Tightness: the convex hull's area over the volume's area.");
+    fits_table(cx, fits, ui);
     let pca = &fits.pca;
     let [c0, c1] = pca.covariance;
     ui.label(format!(
@@ -93,11 +73,129 @@ fn volumes_section(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
         pca.axes[1].y,
     ));
 
-    ray_tests(cx, fits, ui);
+    ray_sphere(cx, fits, ui);
+    slab_test(cx, fits, ui);
     sat_demo(cx, ui);
 }
 
-fn ray_tests(cx: &mut Cx<'_>, fits: &Fits, ui: &mut egui::Ui) {
+/// A table row's first cell: a small square in the colour `kind` is drawn in, then `name`.
+fn named_swatch(ui: &mut egui::Ui, kind: FitKind, name: &str) -> egui::Response {
+    ui.horizontal(|ui| {
+        let (rect, _) = ui.allocate_exact_size(vec2(12.0, 12.0), Sense::hover());
+        ui.painter()
+            .rect_filled(rect.shrink(1.0), 2.0, colors::volume(kind));
+        ui.label(name);
+    })
+    .response
+}
+
+/// Lights `kind` on the canvas while the pointer is over its row (`cells`, the row's cells).
+fn hover_row(cx: &mut Cx<'_>, ui: &egui::Ui, kind: FitKind, cells: &[egui::Response]) {
+    let row = cells
+        .iter()
+        .map(|r| r.rect)
+        .reduce(egui::Rect::union)
+        .unwrap_or(egui::Rect::NOTHING);
+    if ui.rect_contains_pointer(row) {
+        cx.ui.canvas.volume_hover = Some(kind);
+    }
+}
+
+/// Each volume's size and tightness, a row per volume, with its colour on the canvas.
+fn fits_table(cx: &mut Cx<'_>, fits: &Fits, ui: &mut egui::Ui) {
+    Grid::new("fits")
+        .striped(true)
+        .show(ui, |ui| {
+            ui.strong("volume");
+            ui.strong("area");
+            ui.strong("perimeter");
+            ui.strong("tightness");
+            ui.end_row();
+            for kind in FitKind::ALL {
+                if let Some(m) = fits.report.get(kind) {
+                    let cells = [
+                        named_swatch(ui, kind, kind.label()),
+                        ui.label(format!("{:.3}", m.measure)),
+                        ui.label(format!("{:.3}", m.boundary_measure)),
+                        ui.label(
+                            m.tightness
+                                .map_or("–".to_owned(), |t| format!("{:.0} %", t * 100.0)),
+                        ),
+                    ];
+                    hover_row(cx, ui, kind, &cells);
+                    ui.end_row();
+                }
+            }
+        })
+        .response
+        .on_hover_text(
+            "Tightness: the convex hull's area over the volume's area. Point at a row to \
+             light its volume on the canvas.",
+        );
+}
+
+/// Lecture §2, bounding sphere: the ray against each sphere, as the quadratic
+/// a t² + b t + c = 0.
+fn ray_sphere(cx: &mut Cx<'_>, fits: &Fits, ui: &mut egui::Ui) {
+    ui.separator();
+    ui.strong("Ray-sphere test");
+    let ray = match cx.lab.two().ray.map(|r| r.ray()) {
+        None => {
+            ui.label(
+                "Draw a ray (Ray tool) to test it against each sphere: p(t) = e + t (s - e) \
+                 lies on a sphere of radius r when a t² + b t + c = 0, with (the sphere's \
+                 centre moved to the origin first) a = (s - e)·(s - e), b = 2 e·(s - e), \
+                 c = e·e - r². No real root: the ray misses the sphere.",
+            );
+            return;
+        }
+        Some(Err(e)) => {
+            ui.label(format!("No ray: {e}"));
+            return;
+        }
+        Some(Ok(ray)) => ray,
+    };
+    let spheres = [
+        (FitKind::SphereCentroid, &fits.centroid, "centroid"),
+        (FitKind::SphereRitter, &fits.ritter, "Ritter"),
+        (FitKind::SphereWelzl, &fits.welzl, "Welzl"),
+    ];
+    egui::ScrollArea::horizontal()
+        .id_salt("ray-sphere scroll")
+        .show(ui, |ui| {
+            Grid::new("ray-sphere").striped(true).show(ui, |ui| {
+                for h in ["sphere", "a", "b", "c", "b² - 4ac", "t", "ray"] {
+                    ui.strong(h);
+                }
+                ui.end_row();
+                for (kind, sphere, name) in spheres {
+                    let q = sphere.ray_quadratic(&ray);
+                    let roots = q.roots();
+                    let cells = [
+                        named_swatch(ui, kind, name),
+                        ui.label(format!("{:.3}", q.a)),
+                        ui.label(format!("{:.3}", q.b)),
+                        ui.label(format!("{:.3}", q.c)),
+                        ui.label(format!("{:.3}", q.discriminant())),
+                        ui.label(roots.map_or("no real root".to_owned(), |(t0, t1)| {
+                            format!("{t0:.3}, {t1:.3}")
+                        })),
+                        ui.label(match roots {
+                            None => "misses",
+                            Some((_, t1)) if t1 < 0.0 => "misses (behind e)",
+                            Some((t0, _)) if t0 < 0.0 => "starts inside",
+                            Some(_) => "hits",
+                        }),
+                    ];
+                    hover_row(cx, ui, kind, &cells);
+                    ui.end_row();
+                }
+            });
+        });
+}
+
+/// Lecture §2, AABB: the slab test, its table and its failure cases.
+fn slab_test(cx: &mut Cx<'_>, fits: &Fits, ui: &mut egui::Ui) {
     let lab = cx.lab.two();
     ui.separator();
     let mut display = lab.display;
@@ -110,49 +208,53 @@ fn ray_tests(cx: &mut Cx<'_>, fits: &Fits, ui: &mut egui::Ui) {
     }
     match lab.ray.map(|r| (r, r.ray())) {
         None => {
-            ui.label("Draw a ray (Ray tool) to run the ray tests.");
+            ui.label("Draw a ray (Ray tool) to run the slab test.");
         }
         Some((_, Err(e))) => {
             ui.label(format!("No ray: {e}"));
         }
         Some((handles, Ok(ray))) => {
+            // The buttons come first: what they change is all below them, so they stay put
+            // between two clicks.
+            failure_buttons(cx, handles, &fits.aabb, ui);
             slab_details(&SlabExplain::new(&fits.aabb, &ray), ui);
-            ui.horizontal_wrapped(|ui| {
-                if ui.button("Ray parallel to x").clicked() {
-                    let mut r = handles;
-                    r.target.y = r.origin.y;
-                    cx.act(Action2d::SetRay(Some(r)));
-                }
-                if ui
-                    .button("…and on the slab line y = y_min")
-                    .on_hover_text(
-                        "x_d stays, y_d = 0 and y_e = y_min: the naive formula computes 0/0.",
-                    )
-                    .clicked()
-                {
-                    let mut r = handles;
-                    r.origin.y = fits.aabb.min.y;
-                    r.target.y = fits.aabb.min.y;
-                    if r.target.x == r.origin.x {
-                        r.target.x += 1.0;
-                    }
-                    cx.act(Action2d::SetRay(Some(r)));
-                }
-            });
-            let q = fits.centroid.ray_quadratic(&ray);
-            ui.label(format!(
-                "Ray-sphere (centroid sphere): a t² + b t + c = 0 with a = {:.3}, b = {:.3}, \
-                 c = {:.3}; discriminant {:.3}: {}.",
-                q.a,
-                q.b,
-                q.c,
-                q.discriminant(),
-                q.roots()
-                    .map_or("no real root: miss".to_owned(), |(t0, t1)| format!(
-                        "t = {t0:.3}, {t1:.3}"
-                    ))
-            ));
         }
+    }
+}
+
+/// "When does this fail?": a ray parallel to a slab, then one on the slab's line; the
+/// lecture's `x_d = 0` first, then the same for y.
+fn failure_buttons(cx: &mut Cx<'_>, handles: RayHandles, aabb: &Aabb2, ui: &mut egui::Ui) {
+    for (axis, name, across) in [(0, "x", "y"), (1, "y", "x")] {
+        ui.horizontal(|ui| {
+            if ui
+                .button(format!("Ray parallel to {across} ({name}_d = 0)"))
+                .clicked()
+            {
+                let mut r = handles;
+                r.target[axis] = r.origin[axis];
+                if r.target == r.origin {
+                    r.target[1 - axis] += 1.0;
+                }
+                cx.act(Action2d::SetRay(Some(r)));
+            }
+            if ui
+                .button(format!("…and on the slab line {name} = {name}_min"))
+                .on_hover_text(format!(
+                    "{name}_d = 0 and {name}_e = {name}_min: the naive formula computes \
+                     ({name}_min - {name}_e) / {name}_d = 0/0."
+                ))
+                .clicked()
+            {
+                let mut r = handles;
+                r.origin[axis] = aabb.min[axis];
+                r.target[axis] = aabb.min[axis];
+                if r.target == r.origin {
+                    r.target[1 - axis] += 1.0;
+                }
+                cx.act(Action2d::SetRay(Some(r)));
+            }
+        });
     }
 }
 
@@ -214,23 +316,50 @@ fn sat_demo(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
     }
 }
 
+/// `[lo, hi]` with two decimals: `NaN` and `inf` as IEEE floats print them.
+fn interval(lo: f32, hi: f32) -> String {
+    format!("[{lo:.2}, {hi:.2}]")
+}
+
 fn slab_details(s: &SlabExplain, ui: &mut egui::Ui) {
-    Grid::new("slabs").striped(true).show(ui, |ui| {
-        for h in ["", "min", "max", "e", "d", "t_min", "t_max"] {
-            ui.strong(h);
-        }
-        ui.end_row();
-        for (name, a, color) in [
-            ("x", &s.axes[0], colors::SLAB_X),
-            ("y", &s.axes[1], colors::SLAB_Y),
-        ] {
-            ui.label(RichText::new(name).color(color));
-            for v in [a.lo, a.hi, a.origin, a.dir, a.t_min, a.t_max] {
-                ui.label(format!("{v:.3}"));
-            }
-            ui.end_row();
-        }
-    });
+    let verdict = |hits: bool| if hits { "hit" } else { "miss" };
+    egui::ScrollArea::horizontal()
+        .id_salt("slabs scroll")
+        .show(ui, |ui| {
+            Grid::new("slabs").striped(true).show(ui, |ui| {
+                for h in ["", "min", "max", "e", "d", "core: t in", "naive: t in"] {
+                    ui.strong(h);
+                }
+                ui.end_row();
+                for (name, a, color) in [
+                    ("x", &s.axes[0], colors::SLAB_X),
+                    ("y", &s.axes[1], colors::SLAB_Y),
+                ] {
+                    ui.label(RichText::new(name).color(color));
+                    for v in [a.lo, a.hi, a.origin, a.dir] {
+                        ui.label(format!("{v:.3}"));
+                    }
+                    ui.label(interval(a.t_min, a.t_max));
+                    let naive = RichText::new(interval(a.naive.0, a.naive.1));
+                    ui.label(if a.naive_fails() {
+                        naive.color(colors::CULLED)
+                    } else {
+                        naive
+                    });
+                    ui.end_row();
+                }
+                ui.label("answer");
+                for _ in 0..4 {
+                    ui.label("");
+                }
+                ui.label(verdict(s.hits()));
+                ui.label(match s.naive_hits() {
+                    Some(naive) => RichText::new(verdict(naive)),
+                    None => RichText::new("NaN compared").color(colors::CULLED),
+                });
+                ui.end_row();
+            });
+        });
     for (name, a) in [("x", &s.axes[0]), ("y", &s.axes[1])] {
         if a.parallel() {
             ui.label(format!(
@@ -250,12 +379,12 @@ fn slab_details(s: &SlabExplain, ui: &mut egui::Ui) {
             ));
         }
     }
-    let verdict = if s.hits() { "hit" } else { "miss" };
     ui.label(format!(
-        "max(t_xmin, t_ymin) = {:.3} {} min(t_xmax, t_ymax) = {:.3}: {verdict}.",
+        "max(t_xmin, t_ymin) = {:.3} {} min(t_xmax, t_ymax) = {:.3}: {}.",
         s.t_enter,
         if s.hits() { "≤" } else { ">" },
-        s.t_exit
+        s.t_exit,
+        verdict(s.hits()),
     ));
     match s.naive_hits() {
         Some(naive) if naive != s.hits() => {

@@ -36,8 +36,8 @@ static ALL_HITS: Listing = listing!("Brute force: all hits along a ray", NOTE, [
     _        "    return hits sorted by t",
 ]);
 
-static NEAREST: Listing = listing!("Brute force: k nearest to a point", NOTE, [
-    _        "kNearest(primitives, point, k)   // minDistance: k = 1",
+static NEAREST: Listing = listing!("Brute force: minDistance, the k nearest to a point", NOTE, [
+    _        "minDistance(primitives, point, k)  // the k nearest; k = 1: nearest",
     _        "    best = []                    // the k nearest so far",
     _        "    currentMin = inf             // the k-th best distance",
     _        "    for (p in primitives)",

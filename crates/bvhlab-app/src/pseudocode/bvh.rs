@@ -93,14 +93,14 @@ static ALL_HITS: Listing = listing!(
 );
 
 static NEAREST: Listing = listing!(
-    "BVH: k nearest to a point (branch and bound)",
+    "BVH: minDistance with pruning (the k nearest to a point)",
     "The slides' minDistance(bvNode, point, currentMin) (lecture §3) with the pruning the \
      slide leaves out: a node whose BV is farther than currentMin is skipped, and the nearer \
      child is visited first, so that currentMin drops early (Roussopoulos, Kelley and \
      Vincent, SIGMOD 1995). A node at exactly currentMin is still visited: a tie there goes \
      to the lower index.",
     [
-        _          "kNearest(root, point, k)         // minDistance: k = 1",
+        _          "minDistance(root, point, k)      // the k nearest; k = 1: nearest",
         _          "    best = []                    // the k nearest so far",
         _          "    currentMin = inf             // the k-th best distance",
         TestRoot   "    d = root.distance(point)     // 0 inside the BV",

@@ -68,13 +68,13 @@ static ALL_HITS: Listing = listing!(
 );
 
 static NEAREST: Listing = listing!(
-    "Uniform grid: k nearest to a point, ring by ring",
+    "Uniform grid: minDistance with pruning, ring by ring",
     "Lecture §3's distance query on a grid: start in the query point's cell and search \
      outward, ring by ring (the cells ring steps away). Rings stop when even their nearest \
      cell is farther than currentMin; within a ring, a cell farther than currentMin is \
      skipped.",
     [
-        _         "kNearest(grid, point, k)         // rings outward",
+        _         "minDistance(grid, point, k)      // the k nearest, rings outward",
         _         "    best = []                    // the k nearest so far",
         _         "    currentMin = inf             // the k-th best distance",
         _         "    start = the cell of point (the nearest, if outside)",

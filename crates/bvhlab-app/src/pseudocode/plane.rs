@@ -102,12 +102,12 @@ static ALL_HITS: Listing = listing!(
 );
 
 static NEAREST: Listing = listing!(
-    "k-d / BSP tree: k nearest to a point (branch and bound)",
+    "k-d / BSP tree: minDistance with pruning (branch and bound)",
     "Lecture §3: descend to the cell of the query point, then search outward, skipping a \
      subtree whose box is farther than currentMin (Friedman, Bentley and Finkel, 1977). The \
      box is a k-d node's cell, or the box of a BSP node's primitives.",
     [
-        _          "kNearest(root, point, k)         // minDistance: k = 1",
+        _          "minDistance(root, point, k)      // the k nearest; k = 1: nearest",
         _          "    best = []                    // the k nearest so far",
         _          "    currentMin = inf             // the k-th best distance",
         TestRoot   "    d = distance(point, root's box)",

@@ -98,12 +98,12 @@ static ALL_HITS: Listing = listing!(
 );
 
 static NEAREST: Listing = listing!(
-    "Quadtree (octree in 3D): k nearest to a point (best first)",
+    "Quadtree (octree in 3D): minDistance with pruning (best first)",
     "Lecture §3: descend to the cell of the query point, then search outward, skipping cells \
      farther than the best so far. A priority queue takes cells nearest first (Hjaltason and \
      Samet, 1999), so the search ends at the first cell no nearer than currentMin.",
     [
-        _          "kNearest(quadtree, point, k)     // best first",
+        _          "minDistance(quadtree, point, k)  // the k nearest, best first",
         _          "    best = []                    // the k nearest so far",
         _          "    currentMin = inf             // the k-th best distance",
         TestRoot   "    d = distance(point, root cell)",

@@ -4,8 +4,18 @@
 use bvhlab::structure::{PrimitiveResult, PruneAt, PruneReason};
 use bvhlab::{Event, Vector};
 
-/// A sentence for an event, in the lecture's words.
-pub fn describe<V: Vector>(event: &Event<V>) -> String {
+use super::{Task, Variant};
+use crate::model::structures::StructureKind;
+
+/// A sentence for an event of `kind` running `task` in `variant`, in the lecture's words: a
+/// queued child's key is its `tEnter` along a ray or its distance from the point; a grid's
+/// leaves are its cells.
+pub fn describe<V: Vector>(
+    event: &Event<V>,
+    kind: StructureKind,
+    task: Task,
+    variant: Variant,
+) -> String {
     match *event {
         Event::EnterNode { node, depth } => format!("enter node {} (depth {depth})", node.0),
         Event::RayBoundTest { node, interval } => match interval {
@@ -23,12 +33,22 @@ pub fn describe<V: Vector>(event: &Event<V>) -> String {
             child,
             key,
             rank,
-        } => format!(
-            "queue child {} of node {} (key {key:.3}, visit order {})",
-            child.0,
-            parent.0,
-            rank + 1
-        ),
+        } => {
+            // The slides' recursions and the range query order children by nothing but
+            // their place (their key is 0).
+            let key = match task {
+                _ if variant != Variant::Full => String::new(),
+                Task::FirstHit | Task::AnyHit | Task::AllHits => format!("tEnter {key:.3}, "),
+                Task::Nearest => format!("distance {key:.3}, "),
+                Task::Range | Task::Build => String::new(),
+            };
+            format!(
+                "queue child {} of node {} ({key}visit order {})",
+                child.0,
+                parent.0,
+                rank + 1
+            )
+        }
         Event::Prune { node, reason, at } => match at {
             PruneAt::Test => format!("skip node {}: {}", node.0, why(reason)),
             PruneAt::Pop => format!("pop node {} and skip it: {}", node.0, why(reason)),
@@ -78,11 +98,16 @@ pub fn describe<V: Vector>(event: &Event<V>) -> String {
             right,
             ..
         } => format!(
-            "split node {} by {}·p = {offset:.3}: {left} below, {right} above",
+            "split node {} by {}: {left} below, {right} above",
             node.0,
-            plane_name(normal)
+            split_plane(normal, offset)
         ),
-        Event::BuildLeaf { node, prims } => format!("node {} becomes a leaf of {prims}", node.0),
+        Event::BuildLeaf { node, prims } if kind == StructureKind::Grid => {
+            format!("cell {} lists {prims} primitive(s)", node.0)
+        }
+        Event::BuildLeaf { node, prims } => {
+            format!("node {} becomes a leaf with {prims} primitive(s)", node.0)
+        }
         Event::PairTest { a, b, overlap } => format!("test pair ({a}, {b}): {overlap}"),
         Event::NodePairTest { a, b, overlap } => {
             format!("test nodes ({}, {}): {overlap}", a.0, b.0)
@@ -90,20 +115,24 @@ pub fn describe<V: Vector>(event: &Event<V>) -> String {
     }
 }
 
-/// `x`, `y` or `z` for an axis-aligned plane's normal; the normal's coordinates otherwise.
-fn plane_name<V: Vector>(normal: V) -> String {
+/// The split plane `normal · p = offset` in words: "the split plane y = 1.250" for an
+/// axis-aligned one, its normal and offset otherwise (a BSP tree's).
+fn split_plane<V: Vector>(normal: V, offset: f32) -> String {
     let axes = ["x", "y", "z"];
     for (axis, name) in axes.iter().enumerate().take(V::DIM) {
         let mut unit = V::ZERO;
         unit.set_coord(axis, 1.0);
         if normal == unit {
-            return (*name).to_owned();
+            return format!("the split plane {name} = {offset:.3}");
         }
     }
     let coords: Vec<String> = (0..V::DIM)
         .map(|i| format!("{:.2}", normal.coord(i)))
         .collect();
-    format!("({})", coords.join(", "))
+    format!(
+        "a split plane with normal ({}) at offset {offset:.3}",
+        coords.join(", ")
+    )
 }
 
 fn why(reason: PruneReason) -> String {
