@@ -63,7 +63,15 @@ fn query_section(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
             legend(
                 ui,
                 colors::CULLED,
-                format!("BV missed {}", marks.count(NodeMark::Culled)),
+                format!(
+                    "culled {} ({} missed)",
+                    marks.count(NodeMark::Culled),
+                    if lane.settings.kind.is_bvh() {
+                        "bounding volume"
+                    } else {
+                        "cell"
+                    }
+                ),
             );
             legend(
                 ui,
