@@ -165,7 +165,8 @@ fn layout(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
     if cx.ui.panels.tree_in(cx.lab.dimension()) {
         egui::Panel::bottom("tree")
             .resizable(true)
-            .default_size(230.0)
+            .default_size(crate::panels::tree::DEFAULT_PANEL_HEIGHT)
+            .min_size(crate::panels::tree::MIN_PANEL_HEIGHT)
             .show(ui, |ui| crate::panels::tree::tree_panel(cx, ui));
     } else {
         cx.ui.tree_rect = None;

@@ -688,3 +688,84 @@ fn the_panel_shows_the_rays_handles_and_the_point_as_numbers() {
         );
     }
 }
+
+/// The tree diagram's area, and the rectangles of the texts it drew (the leaves' counts),
+/// with the rectangle each was clipped to.
+fn tree_area_and_labels(h: &Harness<'_, LabApp>) -> (egui::Rect, Vec<(egui::Rect, egui::Rect)>) {
+    let area = h.state().ui.trees.two[0].area().expect("a tree is drawn");
+    let labels = h
+        .output()
+        .shapes
+        .iter()
+        .filter(|c| area.contains_rect(c.clip_rect))
+        .filter_map(|c| match &c.shape {
+            egui::Shape::Text(t) => Some((t.visual_bounding_rect(), c.clip_rect)),
+            _ => None,
+        })
+        .collect();
+    (area, labels)
+}
+
+/// Issue 21: after "Clear" (and after reloading that state) the tree diagram collapsed to a
+/// thin strip at the bottom and never came back, and the deepest row's labels were cut off.
+#[test]
+fn after_clear_and_a_preset_the_tree_diagram_has_its_height_and_every_label_inside() {
+    use bvhlab_app::model::Lab;
+    use bvhlab_app::model::presets::Preset;
+    use bvhlab_app::persist::SavedState;
+    use bvhlab_app::tree_diagram::MIN_HEIGHT;
+
+    let mut h = lab();
+    click(&mut h, "Clear");
+    assert!(h.state().ui.trees.two[0].area().is_none(), "no tree");
+    // Reloading the cleared state (the UI's memory, such as panel sizes, stays).
+    let saved = SavedState::capture(h.state().lab());
+    let mut reloaded = Lab::default();
+    reloaded
+        .apply(saved.apply().expect("a captured state applies"))
+        .expect("restores");
+    assert!(reloaded.two().scene.shapes().is_empty());
+    h.state_mut().replace_lab(reloaded);
+    settle(&mut h);
+    choose(&mut h, "Preset", Preset::KdHandful.label());
+    settle(&mut h);
+    let (area, labels) = tree_area_and_labels(&h);
+    assert!(
+        area.height() >= MIN_HEIGHT,
+        "the diagram is {} points high",
+        area.height()
+    );
+    let leaves = {
+        let two = h.state().lab().two();
+        let lane = &two.half.lane;
+        let outline = lane
+            .current(two.scene.revision())
+            .and_then(|s| s.outline.as_ref())
+            .expect("an outline");
+        outline.iter().filter(|n| n.is_leaf()).count()
+    };
+    assert_eq!(
+        labels.len(),
+        leaves,
+        "every leaf's count is drawn: {labels:?}"
+    );
+    for (text, clip) in labels {
+        assert_eq!(clip, area, "the diagram is not clipped by its panel");
+        assert!(area.contains_rect(text), "{text:?} lies inside {area:?}");
+    }
+    // The resize handle: a grip drawn on the panel's top edge, in a colour that shows.
+    let panel = h.state().ui.tree_rect.expect("the panel is shown");
+    let fill = h.ctx.global_style().visuals.panel_fill;
+    let grip = h.output().shapes.iter().find_map(|c| match &c.shape {
+        egui::Shape::Rect(r)
+            if r.rect.width() >= 24.0
+                && (r.rect.center() - panel.center_top()).length() <= 3.0
+                && r.fill != fill
+                && r.fill.a() > 0 =>
+        {
+            Some(r.rect)
+        }
+        _ => None,
+    });
+    assert!(grip.is_some(), "a grip on the tree panel's top edge");
+}
