@@ -689,6 +689,185 @@ fn the_panel_shows_the_rays_handles_and_the_point_as_numbers() {
     }
 }
 
+/// Ctrl+Z (Cmd+Z on a Mac), Ctrl+Shift+Z and Ctrl+Y.
+fn press_with(h: &mut Harness<'_, LabApp>, modifiers: egui::Modifiers, key: Key) {
+    h.key_press_modifiers(modifiers, key);
+    settle(h);
+}
+
+const CTRL: egui::Modifiers = egui::Modifiers::COMMAND;
+
+/// Whether the button labelled `label` can be pressed.
+fn enabled(h: &Harness<'_, LabApp>, label: &str) -> bool {
+    !h.get_by_label(label).accesskit_node().is_disabled()
+}
+
+/// Issue 21: "Clear" asked nothing and could not be undone. Ctrl+Z brings every shape back,
+/// Ctrl+Shift+Z (or Ctrl+Y) clears again, the buttons beside "Clear" do the same, and the
+/// status line says what was undone.
+#[test]
+fn clear_then_ctrl_z_brings_every_shape_back_and_redo_clears_again() {
+    let mut h = lab();
+    let shapes = h.state().lab().two().scene.shapes().to_vec();
+    assert!(!shapes.is_empty());
+    assert!(
+        !enabled(&h, "Undo") && !enabled(&h, "Redo"),
+        "nothing to undo yet"
+    );
+    click(&mut h, "Clear");
+    assert!(h.state().lab().two().scene.shapes().is_empty());
+    assert!(enabled(&h, "Undo") && !enabled(&h, "Redo"));
+
+    press_with(&mut h, CTRL, Key::Z);
+    assert_eq!(
+        h.state().lab().two().scene.shapes(),
+        shapes,
+        "every shape is back"
+    );
+    let said = h.state().lab().message().unwrap_or_default().to_owned();
+    assert!(said.starts_with("Undid clearing the scene"), "{said}");
+    label_containing(&h, "Undid clearing the scene");
+    assert!(!enabled(&h, "Undo") && enabled(&h, "Redo"));
+    // The structure is built on the shapes that came back.
+    let two = h.state().lab().two();
+    assert!(two.half.lane.current(two.scene.revision()).is_some());
+
+    press_with(&mut h, CTRL | egui::Modifiers::SHIFT, Key::Z);
+    assert!(
+        h.state().lab().two().scene.shapes().is_empty(),
+        "redo clears again"
+    );
+    label_containing(&h, "Redid clearing the scene.");
+    click(&mut h, "Undo");
+    assert_eq!(h.state().lab().two().scene.shapes(), shapes);
+    press_with(&mut h, CTRL, Key::Y);
+    assert!(
+        h.state().lab().two().scene.shapes().is_empty(),
+        "Ctrl+Y redoes too"
+    );
+    click(&mut h, "Undo");
+    assert_eq!(h.state().lab().two().scene.shapes(), shapes);
+    // Nothing left to undo: the status line says so, and nothing changes.
+    press_with(&mut h, CTRL, Key::Z);
+    assert_eq!(h.state().lab().two().scene.shapes(), shapes);
+    label_containing(&h, "There is no scene edit to undo.");
+}
+
+/// A new edit after an undo forgets what could be redone; a drag is one edit; a preset is
+/// undone with the structure, ray and point it replaced.
+#[test]
+fn a_new_edit_after_undo_drops_the_redo_history() {
+    use bvhlab_app::model::presets::Preset;
+    use bvhlab_app::model::{Action2d, HalfAction};
+
+    let mut h = lab();
+    let start = h.state().lab().two().scene.shapes().to_vec();
+    let segment = |x: f32| Action2d::AddShape {
+        kind: ShapeKind::Segment,
+        points: vec![Vec2::new(x, 0.0), Vec2::new(x, 1.0)],
+    };
+    act(&mut h, segment(1.0));
+    act(&mut h, segment(2.0));
+    press_with(&mut h, CTRL, Key::Z);
+    assert_eq!(h.state().lab().two().history().redo_len(), 1);
+    assert!(enabled(&h, "Redo"));
+    label_containing(&h, "Undid adding a segment");
+    // A new edit: the undone one cannot come back.
+    act(&mut h, segment(3.0));
+    assert_eq!(h.state().lab().two().history().redo_len(), 0);
+    assert!(!enabled(&h, "Redo"));
+    press_with(&mut h, CTRL | egui::Modifiers::SHIFT, Key::Z);
+    label_containing(&h, "There is no undone scene edit to redo.");
+    let xs: Vec<f32> = h.state().lab().two().scene.shapes()[start.len()..]
+        .iter()
+        .map(|s| s.points[0].x)
+        .collect();
+    assert_eq!(xs, [1.0, 3.0]);
+    press_with(&mut h, CTRL, Key::Z);
+    press_with(&mut h, CTRL, Key::Z);
+    assert_eq!(h.state().lab().two().scene.shapes(), start);
+
+    // A drag in select mode moves the shape many times: one edit. Two drags: two.
+    click(&mut h, "Select / move");
+    let shapes = h.state().lab().two().scene.shapes().to_vec();
+    let grab = h.state().canvas_screen().world_length(10.0);
+    let (index, mid) = shapes
+        .iter()
+        .enumerate()
+        .map(|(i, s)| (i, (s.points[0] + s.points[1]) * 0.5))
+        .find(|&(i, m)| {
+            shapes
+                .iter()
+                .enumerate()
+                .all(|(j, s)| j == i || s.distance(m) > 2.0 * grab)
+        })
+        .expect("some shape stands alone");
+    let from = screen(&h, mid);
+    drag(&mut h, from, from + vec2(60.0, 0.0));
+    let once = h.state().lab().two().scene.shapes()[index].clone();
+    drag(&mut h, from + vec2(60.0, 0.0), from + vec2(60.0, 60.0));
+    assert_ne!(h.state().lab().two().scene.shapes()[index], once);
+    press_with(&mut h, CTRL, Key::Z);
+    label_containing(&h, "Undid moving a shape");
+    assert_eq!(
+        h.state().lab().two().scene.shapes()[index],
+        once,
+        "the second drag"
+    );
+    press_with(&mut h, CTRL, Key::Z);
+    assert_eq!(
+        h.state().lab().two().scene.shapes(),
+        shapes,
+        "the first drag"
+    );
+
+    // A preset, undone, brings back the scene and the structure it replaced.
+    let mut settings = h.state().lab().two().half.lane.settings;
+    settings.kind = StructureKind::Grid;
+    act(&mut h, HalfAction::SetStructure(settings));
+    act(&mut h, Action2d::LoadPreset(Preset::KdHandful));
+    assert_ne!(h.state().lab().two().scene.shapes(), shapes);
+    press_with(&mut h, CTRL, Key::Z);
+    assert_eq!(h.state().lab().two().scene.shapes(), shapes);
+    assert_eq!(h.state().lab().two().half.lane.settings, settings);
+    label_containing(&h, "Undid loading the preset");
+}
+
+/// The history keeps the last MAX_UNDO edits: older ones are forgotten.
+#[test]
+fn the_undo_history_is_bounded() {
+    use bvhlab_app::model::history::MAX_UNDO;
+    use bvhlab_app::model::{Action2d, Lab};
+
+    let mut lab = Lab::default();
+    let start = lab.two().scene.shapes().len();
+    let extra = 7;
+    for i in 0..MAX_UNDO + extra {
+        lab.apply(
+            Action2d::AddShape {
+                kind: ShapeKind::Points,
+                points: vec![Vec2::new(i as f32, -3.0)],
+            }
+            .into(),
+        )
+        .expect("adds");
+    }
+    assert_eq!(lab.two().history().undo_len(), MAX_UNDO);
+    for _ in 0..MAX_UNDO {
+        lab.apply(Action2d::Undo.into()).expect("undoes");
+    }
+    // The oldest edits were forgotten: their shapes stay.
+    assert_eq!(lab.two().scene.shapes().len(), start + extra);
+    assert_eq!(lab.two().history().undo_len(), 0);
+    assert!(lab.apply(Action2d::Undo.into()).is_err(), "nothing more");
+    assert_eq!(lab.two().history().redo_len(), MAX_UNDO);
+    for _ in 0..MAX_UNDO {
+        lab.apply(Action2d::Redo.into()).expect("redoes");
+    }
+    assert_eq!(lab.two().scene.shapes().len(), start + MAX_UNDO + extra);
+    assert!(lab.apply(Action2d::Redo.into()).is_err());
+}
+
 /// The tree diagram's area, and the rectangles of the texts it drew (the leaves' counts),
 /// with the rectangle each was clipped to.
 fn tree_area_and_labels(h: &Harness<'_, LabApp>) -> (egui::Rect, Vec<(egui::Rect, egui::Rect)>) {

@@ -57,6 +57,12 @@ pub enum Action2d {
     LoadPreset(Preset),
     /// Removes every shape.
     Clear,
+    /// Undoes the last scene edit (a shape added, moved or deleted, the scene cleared, a
+    /// preset loaded); refused when there is none.
+    Undo,
+    /// Redoes the last scene edit undone; refused when there is none (a new edit forgets
+    /// what could be redone).
+    Redo,
     /// Adds a shape.
     AddShape {
         /// What the points make.

@@ -141,6 +141,8 @@ impl Restore2d {
         lab.point = self.point;
         lab.camera = self.camera;
         lab.fit_pending = false;
+        // Undoing an edit made before would bring back a scene of another state.
+        lab.history = super::history::History::default();
     }
 }
 
