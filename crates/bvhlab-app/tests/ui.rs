@@ -689,6 +689,106 @@ fn the_panel_shows_the_rays_handles_and_the_point_as_numbers() {
     }
 }
 
+/// The versions of the algorithm offered in "Step through", with whether each is selected.
+fn variant_radios(h: &Harness<'_, LabApp>) -> Vec<(String, bool)> {
+    use egui::accesskit::Toggled;
+    h.query_all_by_role(Role::RadioButton)
+        .filter_map(|n| {
+            let node = n.accesskit_node();
+            let label = node.label()?;
+            let known = ["full (near first", "the slides'"];
+            known
+                .iter()
+                .any(|k| label.starts_with(k))
+                .then(|| (label, node.toggled() == Some(Toggled::True)))
+        })
+        .collect()
+}
+
+/// Asserts that exactly one version is selected, and that it is the one the lab runs.
+fn assert_one_variant_selected_and_run<P: bvhlab_app::model::dimension::LabPrimitive>(
+    h: &Harness<'_, LabApp>,
+    half: &bvhlab_app::model::half::Half<P>,
+    what: &str,
+) {
+    use bvhlab_app::panels::step_through::variant_label;
+    let radios = variant_radios(h);
+    let selected: Vec<&String> = radios.iter().filter(|r| r.1).map(|r| &r.0).collect();
+    assert_eq!(
+        selected.len(),
+        1,
+        "{what}: one version selected: {radios:?}"
+    );
+    let runs = half.lane.recorded().expect("a recording").question.variant;
+    assert_eq!(
+        selected[0],
+        variant_label(runs),
+        "{what}: the one selected runs"
+    );
+    assert_eq!(half.variant, runs, "{what}");
+}
+
+/// Issue 21: after "the slides' + pruning" for a point and then a ray, neither "full" nor
+/// "the slides' version" was selected while the lab ran the full one (2D and 3D).
+#[test]
+fn after_the_slides_pruned_nearest_a_ray_selects_the_version_that_runs() {
+    use bvhlab::glam::Vec3;
+    use bvhlab_app::model::mesh::MeshSource;
+    use bvhlab_app::model::{Action3d, Dimension};
+    use bvhlab_app::pseudocode::{Task, Variant};
+
+    let mut h = lab();
+    choose(&mut h, "Structure", StructureKind::AabbTree.label());
+    click(&mut h, "Query point");
+    let at = screen(&h, Vec2::new(7.3, 12.1));
+    click_at(&mut h, at);
+    click(&mut h, "the slides' + pruning");
+    let half = &h.state().lab().two().half;
+    assert_eq!(half.task, Task::Nearest);
+    assert_one_variant_selected_and_run(&h, half, "2D nearest");
+    assert_eq!(half.variant, Variant::LecturePruned);
+    act(&mut h, bvhlab_app::model::Action2d::SetTool(Tool::Ray));
+    drag_test_ray(&mut h);
+    let half = &h.state().lab().two().half;
+    assert_eq!(half.task, Task::FirstHit);
+    assert_one_variant_selected_and_run(&h, half, "2D ray after the pruned nearest");
+    assert_eq!(half.variant, Variant::Full);
+
+    // 3D, with the same panel.
+    act(
+        &mut h,
+        Action3d::OpenMesh(MeshSource::Builtin("tetrahedra".to_owned())),
+    );
+    for _ in 0..2_000 {
+        let three = h.state().lab().three();
+        if !three.busy() && three.half.lane.current(three.revision()).is_some() {
+            break;
+        }
+        h.step();
+    }
+    settle(&mut h);
+    assert_eq!(h.state().lab().dimension(), Dimension::Three);
+    let mut settings = h.state().lab().three().half.lane.settings;
+    settings.kind = StructureKind::AabbTree;
+    act(
+        &mut h,
+        bvhlab_app::model::HalfAction::SetStructure(settings),
+    );
+    settle(&mut h);
+    act(&mut h, Action3d::SetPoint(Some(Vec3::new(0.1, 0.2, 0.3))));
+    click(&mut h, "the slides' + pruning");
+    let half = &h.state().lab().three().half;
+    assert_eq!(half.task, Task::Nearest);
+    assert_one_variant_selected_and_run(&h, half, "3D nearest");
+    assert_eq!(half.variant, Variant::LecturePruned);
+    let ray = bvhlab::Ray3::new(Vec3::new(-5.0, 0.1, 0.2), Vec3::X).expect("a ray");
+    act(&mut h, Action3d::SetRay(Some(ray)));
+    let half = &h.state().lab().three().half;
+    assert_eq!(half.task, Task::FirstHit);
+    assert_one_variant_selected_and_run(&h, half, "3D ray after the pruned nearest");
+    assert_eq!(half.variant, Variant::Full);
+}
+
 /// Ctrl+Z (Cmd+Z on a Mac), Ctrl+Shift+Z and Ctrl+Y.
 fn press_with(h: &mut Harness<'_, LabApp>, modifiers: egui::Modifiers, key: Key) {
     h.key_press_modifiers(modifiers, key);

@@ -165,7 +165,25 @@ where
             None => half.compare = None,
         },
         HalfAction::SetTask(task) => half.set_task(task),
-        HalfAction::SetVariant(variant) => half.variant = variant,
+        HalfAction::SetVariant(variant) => {
+            // The panel offers only the task's versions: one of them is always the one shown
+            // selected and run.
+            let offered = variants(half.lane.settings.kind, half.task);
+            if !offered.contains(&variant) {
+                let name = |v: Variant| match v {
+                    Variant::Full => "the full version",
+                    Variant::Lecture => "the slides' version",
+                    Variant::LecturePruned => "the slides' version with pruning",
+                };
+                let has: Vec<&str> = offered.into_iter().map(name).collect();
+                return Err(format!(
+                    "this task on this structure has no {}; it has {}",
+                    name(variant),
+                    has.join(" and ")
+                ));
+            }
+            half.variant = variant;
+        }
         HalfAction::SetK(k) => {
             if !(1..=MAX_K).contains(&k) {
                 return Err(format!("k is {k}; it must be 1 to {MAX_K}"));
