@@ -164,6 +164,39 @@ pub enum PlaybackAction {
     SetSpeed(f32),
 }
 
+impl Action {
+    /// Whether the action asks a new question: it changes what is recorded (the scene or
+    /// mesh, the structures, the task, variant, k, radius, the ray or the point). Playback
+    /// then shows the new answer, at the end ([`super::playback`]'s rule). Framing a mesh
+    /// just loaded is not one: opening it was.
+    pub fn asks_new_question(&self) -> bool {
+        match self {
+            Self::Two(a) => matches!(
+                a,
+                Action2d::LoadPreset(_)
+                    | Action2d::Clear
+                    | Action2d::Undo
+                    | Action2d::Redo
+                    | Action2d::AddShape { .. }
+                    | Action2d::AddToCloud { .. }
+                    | Action2d::MoveSelection(_)
+                    | Action2d::DeleteSelection
+                    | Action2d::SetRay(_)
+                    | Action2d::SetPoint(_)
+            ),
+            Self::Three(a) => matches!(
+                a,
+                Action3d::SetTool(_)
+                    | Action3d::OpenMesh(_)
+                    | Action3d::SetRay(_)
+                    | Action3d::SetPoint(_)
+            ),
+            Self::Half(a) => !matches!(a, HalfAction::Playback(_)),
+            Self::Show(_) | Self::SetMessage(_) | Self::Restore(_) | Self::Tick { .. } => false,
+        }
+    }
+}
+
 impl From<Action2d> for Action {
     fn from(a: Action2d) -> Self {
         Self::Two(a)

@@ -22,6 +22,12 @@ impl Lab {
     /// Why the action cannot apply, in a sentence for the status line; the lab is then
     /// unchanged.
     pub fn apply(&mut self, action: Action) -> Result<(), String> {
+        // The half whose question the action changes, if it asks a new one.
+        let asks = action.asks_new_question().then(|| match &action {
+            Action::Three(_) => Dimension::Three,
+            Action::Half(_) => self.dimension,
+            _ => Dimension::Two,
+        });
         let note = match action {
             Action::Show(dimension) => {
                 if dimension == self.dimension {
@@ -68,6 +74,12 @@ impl Lab {
                 Note::Keep
             }
         };
+        // A new question shows its answer (the rule is in `super::playback`).
+        match asks {
+            Some(Dimension::Two) => self.two.half.playback.new_question(),
+            Some(Dimension::Three) => self.three.half.playback.new_question(),
+            None => {}
+        }
         match note {
             Note::Keep => {}
             Note::Clear => self.message = None,
