@@ -331,11 +331,16 @@ fn assert_answer_shown<P: bvhlab_app::model::dimension::LabPrimitive>(
 /// model, for every structure and for the first hit and the nearest point.
 #[test]
 fn a_new_question_shows_its_answer_at_the_end_for_every_structure_and_task() {
-    use bvhlab::glam::{Vec2, Vec3};
+    new_questions_in_2d();
+    new_questions_in_3d();
+}
+
+/// The 2D half of the test above, in the UI.
+fn new_questions_in_2d() {
+    use bvhlab::glam::Vec2;
     use bvhlab_app::model::lab2d::RayHandles;
-    use bvhlab_app::model::mesh::MeshSource;
     use bvhlab_app::model::presets::Preset;
-    use bvhlab_app::model::{Action, Action2d, Action3d, HalfAction, Lab, PlaybackAction};
+    use bvhlab_app::model::{Action2d, HalfAction, PlaybackAction};
 
     let mut h = lab();
     act(&mut h, Action2d::LoadPreset(Preset::QuadtreeHandful));
@@ -400,8 +405,14 @@ fn a_new_question_shows_its_answer_at_the_end_for_every_structure_and_task() {
             assert_answer_shown(&h.state().lab().two().half, answer_2d(&h), &what);
         }
     }
+}
 
-    // 3D: a small mesh, built as the frames build it.
+/// The 3D half of the test above, in the model: a small mesh, built as the frames build it.
+fn new_questions_in_3d() {
+    use bvhlab::glam::Vec3;
+    use bvhlab_app::model::mesh::MeshSource;
+    use bvhlab_app::model::{Action, Action3d, HalfAction, Lab, PlaybackAction};
+
     let mut lab = Lab::default();
     let tick = |lab: &mut Lab| {
         for _ in 0..2_000 {

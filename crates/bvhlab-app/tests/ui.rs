@@ -933,7 +933,7 @@ fn a_new_edit_after_undo_drops_the_redo_history() {
     label_containing(&h, "Undid loading the preset");
 }
 
-/// The history keeps the last MAX_UNDO edits: older ones are forgotten.
+/// The history keeps the last `MAX_UNDO` edits: older ones are forgotten.
 #[test]
 fn the_undo_history_is_bounded() {
     use bvhlab_app::model::history::MAX_UNDO;

@@ -23,7 +23,7 @@ impl Lab {
     /// unchanged.
     pub fn apply(&mut self, action: Action) -> Result<(), String> {
         // The half whose question the action changes, if it asks a new one.
-        let asks = action.asks_new_question().then(|| match &action {
+        let asks = action.asks_new_question().then_some(match &action {
             Action::Three(_) => Dimension::Three,
             Action::Half(_) => self.dimension,
             _ => Dimension::Two,

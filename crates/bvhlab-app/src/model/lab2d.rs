@@ -282,7 +282,6 @@ impl Lab2d {
     fn edit_scene(&mut self, action: Action2d) -> Result<Note, String> {
         let selection = self.selection.clone();
         let what = match &action {
-            Action2d::Select(_) => None,
             Action2d::MoveSelection(_) if self.history.continues_move(&selection) => None,
             Action2d::Clear => Some("clearing the scene".to_owned()),
             Action2d::AddShape { kind, .. } => Some(format!("adding a {}", kind.label())),
@@ -293,6 +292,7 @@ impl Lab2d {
                 Some("deleting a shape".to_owned())
             }
             Action2d::DeleteSelection => Some(format!("deleting {} shapes", selection.len())),
+            // Selecting changes no shape.
             _ => None,
         };
         let is_move = matches!(action, Action2d::MoveSelection(_));

@@ -11,7 +11,7 @@
 //! the structure or the one compared with, the task, the variant, k, the radius, the ray or
 //! the point. After it, playback stands at the end of the new recording, live (it follows the
 //! end while the ray is dragged or a 3D build finishes), with the answer drawn, and it stops
-//! if it was playing ([`Playback::new_question`]). Lab::apply applies the rule, in one place.
+//! if it was playing ([`Playback::new_question`]). `Lab::apply` applies the rule, in one place.
 //!
 //! Stepping through the new question is one key away: Home goes to step 0, and Play starts
 //! from the beginning when at the end. Only playback's own actions move the step; a saved
