@@ -372,12 +372,16 @@ fn new_questions_in_2d() {
                 .map(|n| n.prim as u32),
         }
     };
+    // A recording to step away from.
+    act(&mut h, Action2d::SetRay(Some(rays[1])));
     for kind in StructureKind::ALL {
         let mut settings = h.state().lab().two().half.lane.settings;
         settings.kind = kind;
         // Away from the end (step 0, as Home puts it), then a new structure.
         act(&mut h, PlaybackAction::GoTo(0));
         act(&mut h, HalfAction::SetStructure(settings));
+        let what = format!("2D {kind:?}, a new structure");
+        assert_answer_shown(&h.state().lab().two().half, answer_2d(&h), &what);
         for (i, (ray, point)) in rays.iter().zip(points).enumerate() {
             // A ray placed while playback stands at step 0.
             press(&mut h, egui::Key::Home);
@@ -393,11 +397,15 @@ fn new_questions_in_2d() {
                 .expect("plays");
             h.step();
             assert!(h.state().lab().playing(), "2D {kind:?}: playing");
-            act(&mut h, Action2d::SetPoint(Some(point)));
+            h.state_mut()
+                .apply(Action2d::SetPoint(Some(point)))
+                .expect("a point");
+            h.step();
             let what = format!("2D {kind:?}, point {i}");
             assert_eq!(h.state().lab().two().half.task, Task::Nearest, "{what}");
             assert_answer_shown(&h.state().lab().two().half, answer_2d(&h), &what);
             assert!(!shows(&h, "nothing done yet"), "{what}");
+            settle(&mut h);
             // Back to the ray's task from a step in the middle.
             act(&mut h, PlaybackAction::GoTo(2));
             act(&mut h, HalfAction::SetTask(Task::FirstHit));
@@ -463,6 +471,14 @@ fn new_questions_in_3d() {
                 .map(|n| n.prim as u32),
         }
     };
+    let ray = bvhlab::Ray3::new(
+        mid - 2.0 * size * Vec3::new(1.0, 0.13, 0.07),
+        Vec3::new(1.0, 0.13, 0.07),
+    )
+    .expect("a ray");
+    // A recording to step away from.
+    lab.apply(Action3d::SetRay(Some(ray)).into())
+        .expect("a ray");
     for kind in StructureKind::ALL {
         let mut settings = lab.three().half.lane.settings;
         settings.kind = kind;
@@ -470,11 +486,11 @@ fn new_questions_in_3d() {
         lab.apply(HalfAction::SetStructure(settings).into())
             .expect("a structure");
         tick(&mut lab);
-        let ray = bvhlab::Ray3::new(
-            mid - 2.0 * size * Vec3::new(1.0, 0.13, 0.07),
-            Vec3::new(1.0, 0.13, 0.07),
-        )
-        .expect("a ray");
+        assert_answer_shown(
+            &lab.three().half,
+            answer_3d(&lab),
+            &format!("3D {kind:?}, a new structure"),
+        );
         lab.apply(PlaybackAction::GoTo(0).into()).expect("goes");
         lab.apply(Action3d::SetRay(Some(ray)).into())
             .expect("a ray");
