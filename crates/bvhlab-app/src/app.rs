@@ -8,7 +8,7 @@
 
 use web_time::Instant;
 
-use crate::model::{Action, Dimension, Lab, PlaybackAction};
+use crate::model::{Action, Action2d, Dimension, Lab, PlaybackAction};
 use crate::report::Report;
 use crate::ui_state::{Cx, UiState};
 
@@ -110,6 +110,7 @@ impl LabApp {
             build_ms: crate::model::lab3d::build_budget_ms(self.ui.clock.median_ms()),
         }];
         playback_keys(&self.lab, ui, &mut actions);
+        edit_keys(&self.lab, ui, &mut actions);
         actions.extend(crate::persist::poll_imports(ui.ctx()));
         actions.extend(crate::panels::export::finish_png(&mut self.ui, ui.ctx()));
         self.apply_from_ui(actions);
@@ -167,7 +168,8 @@ fn layout(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
     if cx.ui.panels.tree_in(cx.lab.dimension()) {
         egui::Panel::bottom("tree")
             .resizable(true)
-            .default_size(230.0)
+            .default_size(crate::panels::tree::DEFAULT_PANEL_HEIGHT)
+            .min_size(crate::panels::tree::MIN_PANEL_HEIGHT)
             .show(ui, |ui| crate::panels::tree::tree_panel(cx, ui));
     } else {
         cx.ui.tree_rect = None;
@@ -210,6 +212,26 @@ fn playback_keys(lab: &Lab, ui: &egui::Ui, actions: &mut Vec<Action>) {
             let mut heat = lab.three().heat;
             heat.on = !heat.on;
             actions.push(crate::model::Action3d::SetHeat(heat).into());
+        }
+    });
+}
+
+/// Undo (Ctrl+Z, Cmd+Z on a Mac) and redo (Ctrl+Shift+Z or Ctrl+Y) of the 2D scene's edits,
+/// when the 2D half is shown and no text field has the focus (a text field undoes its own
+/// typing).
+fn edit_keys(lab: &Lab, ui: &egui::Ui, actions: &mut Vec<Action>) {
+    if lab.dimension() != Dimension::Two || ui.ctx().text_edit_focused() {
+        return;
+    }
+    let command = egui::Modifiers::COMMAND;
+    ui.input_mut(|i| {
+        // The longer shortcut first: Ctrl+Z would also match Ctrl+Shift+Z.
+        if i.consume_key(command | egui::Modifiers::SHIFT, egui::Key::Z)
+            || i.consume_key(command, egui::Key::Y)
+        {
+            actions.push(Action2d::Redo.into());
+        } else if i.consume_key(command, egui::Key::Z) {
+            actions.push(Action2d::Undo.into());
         }
     });
 }

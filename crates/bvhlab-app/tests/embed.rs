@@ -93,9 +93,9 @@ fn every_documented_parameter_is_read_and_a_typo_is_named() {
         "step \"-1\" is not a whole number",
         "\"*\" is not an origin",
         "\"https://a.example/path\" is not an origin",
-        "mesh \"teapot\"",
-        "preset \"\"",
-        "\"sidebar\"",
+        "no mesh named \"teapot\"",
+        "no preset named \"\"",
+        "no panel named \"sidebar\"",
     ] {
         assert!(
             text.contains(part),
@@ -104,6 +104,62 @@ fn every_documented_parameter_is_read_and_a_typo_is_named() {
     }
     assert_eq!(bad.problems.len(), 10, "{text}");
     assert_eq!(bad.structure, None, "a bad value is not used");
+}
+
+/// Issue 21: a wrong name in the address was "unknown variant `kdtree`"; every parameter
+/// whose value is one of a list of names now says which name it does not know and lists the
+/// names it does, the nearest spelling first.
+#[test]
+fn a_wrong_name_in_the_address_is_answered_with_the_names_the_lab_knows() {
+    let meshes: Vec<&str> = bvhlab_meshio::builtin::list()
+        .iter()
+        .map(|b| b.slug)
+        .collect();
+    let presets: Vec<&str> = Preset::ALL.iter().map(|p| p.slug()).collect();
+    let cases: [(&str, &str, &[&str]); 6] = [
+        (
+            "structure=kdtree",
+            "the address's structure: no structure named \"kdtree\"; try kd-tree, ",
+            StructureName::NAMES,
+        ),
+        (
+            "compare=aabbtree",
+            "the address's compare: no structure named \"aabbtree\"; try aabb-tree, ",
+            StructureName::NAMES,
+        ),
+        (
+            "task=nearst",
+            "the address's task: no task named \"nearst\"; try nearest, ",
+            TaskName::NAMES,
+        ),
+        (
+            "preset=quadtre",
+            "the address's preset: no preset named \"quadtre\"; try quadtree, ",
+            &presets,
+        ),
+        (
+            "mesh=buny",
+            "the address's mesh: no mesh named \"buny\"; try bunny, ",
+            &meshes,
+        ),
+        (
+            "panels=stepper,tre",
+            "the address's panels: no panel named \"tre\"; try tree, ",
+            &["controls", "stepper", "tree"],
+        ),
+    ];
+    for (query, start, names) in cases {
+        let p = StartParams::parse(query);
+        assert_eq!(p.problems.len(), 1, "{query}: {:?}", p.problems);
+        let said = &p.problems[0];
+        assert!(said.starts_with(start), "{query}: {said}");
+        assert!(!said.contains("variant"), "{query}: {said}");
+        for name in names {
+            assert!(said.contains(name), "{query} lists {name}: {said}");
+        }
+    }
+    assert_eq!(StructureName::NAMES.len(), 8);
+    assert_eq!(TaskName::NAMES.len(), 6);
 }
 
 #[test]

@@ -364,3 +364,222 @@ fn two_structures_step_together() {
         );
     }
 }
+
+/// Where a half's playback stands, and what it shows: (step shown, steps, live, playing).
+fn standing<P: bvhlab_app::model::dimension::LabPrimitive>(
+    half: &bvhlab_app::model::half::Half<P>,
+) -> (usize, usize, bool, bool) {
+    let p = &half.playback;
+    let len = half.steps();
+    (p.shown(len), len, p.at_end, p.playing)
+}
+
+/// Asserts that playback stands at the end of a real recording, live and still, and that the
+/// snapshot shown holds the answer the lab gives (`answer`: the first primitive hit or
+/// nearest, as the live query found it).
+fn assert_answer_shown<P: bvhlab_app::model::dimension::LabPrimitive>(
+    half: &bvhlab_app::model::half::Half<P>,
+    answer: Option<u32>,
+    what: &str,
+) {
+    let (shown, len, live, playing) = standing(half);
+    assert!(len > 0, "{what}: a recording");
+    assert_eq!((shown, live, playing), (len, true, false), "{what}");
+    let snap = half.lane.snapshot.as_ref().expect("a snapshot");
+    assert_eq!(snap.step, len, "{what}: the snapshot is at the end");
+    assert_eq!(
+        snap.best.first().map(|b| b.0),
+        answer,
+        "{what}: the answer is drawn"
+    );
+}
+
+/// Issue 21: after a new question playback stood sometimes at the end with the answer
+/// drawn, sometimes at step 0 with none ("step 0 of 24: nothing done yet" after placing a
+/// point on the quadtree preset). The rule (model/playback.rs): a new question (a ray, a
+/// point, a task, a structure) puts playback at the end, live, with the answer drawn, and
+/// stops it playing, whatever the student did with the step before. 2D in the UI, 3D in the
+/// model, for every structure and for the first hit and the nearest point.
+#[test]
+fn a_new_question_shows_its_answer_at_the_end_for_every_structure_and_task() {
+    new_questions_in_2d();
+    new_questions_in_3d();
+}
+
+/// The 2D half of the test above, in the UI.
+fn new_questions_in_2d() {
+    use bvhlab::glam::Vec2;
+    use bvhlab_app::model::lab2d::RayHandles;
+    use bvhlab_app::model::presets::Preset;
+    use bvhlab_app::model::{Action2d, HalfAction, PlaybackAction};
+
+    let mut h = lab();
+    act(&mut h, Action2d::LoadPreset(Preset::QuadtreeHandful));
+    let (lo, hi) = h.state().lab().two().scene.bounds().expect("shapes");
+    let mid = (lo + hi) * 0.5;
+    let rays = [
+        RayHandles {
+            origin: Vec2::new(lo.x - 2.0, mid.y + 0.1),
+            target: mid,
+        },
+        RayHandles {
+            origin: Vec2::new(mid.x - 0.3, hi.y + 2.0),
+            target: Vec2::new(mid.x + 0.2, mid.y),
+        },
+    ];
+    let points = [mid + Vec2::new(0.4, 0.3), lo + (hi - lo) * 0.3];
+    let answer_2d = |h: &Harness<'_, LabApp>| {
+        let lane = &h.state().lab().two().half.lane;
+        match h.state().lab().two().half.task {
+            Task::FirstHit => lane
+                .ray_outcome
+                .as_ref()
+                .and_then(|o| o.hit)
+                .map(|hit| hit.prim as u32),
+            _ => lane
+                .point_outcome
+                .as_ref()
+                .and_then(|o| o.nearest.first())
+                .map(|n| n.prim as u32),
+        }
+    };
+    // A recording to step away from.
+    act(&mut h, Action2d::SetRay(Some(rays[1])));
+    for kind in StructureKind::ALL {
+        let mut settings = h.state().lab().two().half.lane.settings;
+        settings.kind = kind;
+        // Away from the end (step 0, as Home puts it), then a new structure.
+        act(&mut h, PlaybackAction::GoTo(0));
+        act(&mut h, HalfAction::SetStructure(settings));
+        let what = format!("2D {kind:?}, a new structure");
+        assert_answer_shown(&h.state().lab().two().half, answer_2d(&h), &what);
+        for (i, (ray, point)) in rays.iter().zip(points).enumerate() {
+            // A ray placed while playback stands at step 0.
+            press(&mut h, egui::Key::Home);
+            act(&mut h, Action2d::SetRay(Some(*ray)));
+            let what = format!("2D {kind:?}, ray {i}");
+            assert_answer_shown(&h.state().lab().two().half, answer_2d(&h), &what);
+            assert!(!shows(&h, "nothing done yet"), "{what}");
+            // A point placed while playing.
+            act(&mut h, PlaybackAction::GoTo(1));
+            // Playing (a frame, not settled: it repaints until the end).
+            h.state_mut()
+                .apply(PlaybackAction::Play(true))
+                .expect("plays");
+            h.step();
+            assert!(h.state().lab().playing(), "2D {kind:?}: playing");
+            h.state_mut()
+                .apply(Action2d::SetPoint(Some(point)))
+                .expect("a point");
+            h.step();
+            let what = format!("2D {kind:?}, point {i}");
+            assert_eq!(h.state().lab().two().half.task, Task::Nearest, "{what}");
+            assert_answer_shown(&h.state().lab().two().half, answer_2d(&h), &what);
+            assert!(!shows(&h, "nothing done yet"), "{what}");
+            settle(&mut h);
+            // Back to the ray's task from a step in the middle.
+            act(&mut h, PlaybackAction::GoTo(2));
+            act(&mut h, HalfAction::SetTask(Task::FirstHit));
+            let what = format!("2D {kind:?}, task back to the ray {i}");
+            assert_answer_shown(&h.state().lab().two().half, answer_2d(&h), &what);
+        }
+    }
+}
+
+/// The 3D half of the test above, in the model: a small mesh, built as the frames build it.
+fn new_questions_in_3d() {
+    use bvhlab::glam::Vec3;
+    use bvhlab_app::model::mesh::MeshSource;
+    use bvhlab_app::model::{Action, Action3d, HalfAction, Lab, PlaybackAction};
+
+    let mut lab = Lab::default();
+    let tick = |lab: &mut Lab| {
+        for _ in 0..2_000 {
+            lab.apply(Action::Tick {
+                seconds: 0.0,
+                build_ms: 1e6,
+            })
+            .expect("a frame");
+            let three = lab.three();
+            if !three.busy()
+                && three
+                    .half
+                    .lanes()
+                    .all(|l| l.current(three.revision()).is_some())
+            {
+                return;
+            }
+        }
+        panic!("the 3D half did not finish loading and building");
+    };
+    lab.apply(Action3d::OpenMesh(MeshSource::Builtin("tetrahedra".to_owned())).into())
+        .expect("opens");
+    tick(&mut lab);
+    let tris = lab.three().triangles();
+    let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
+    for t in tris {
+        for v in [t.a, t.b, t.c] {
+            lo = lo.min(v);
+            hi = hi.max(v);
+        }
+    }
+    let size = (hi - lo).length();
+    // Aimed at a triangle's centroid, so that the ray hits something.
+    let t = tris[tris.len() / 2];
+    let mid = (t.a + t.b + t.c) / 3.0;
+    let answer_3d = |lab: &Lab| {
+        let lane = &lab.three().half.lane;
+        match lab.three().half.task {
+            Task::FirstHit => lane
+                .ray_outcome
+                .as_ref()
+                .and_then(|o| o.hit)
+                .map(|hit| hit.prim as u32),
+            _ => lane
+                .point_outcome
+                .as_ref()
+                .and_then(|o| o.nearest.first())
+                .map(|n| n.prim as u32),
+        }
+    };
+    let ray = bvhlab::Ray3::new(
+        mid - 2.0 * size * Vec3::new(1.0, 0.13, 0.07),
+        Vec3::new(1.0, 0.13, 0.07),
+    )
+    .expect("a ray");
+    // A recording to step away from.
+    lab.apply(Action3d::SetRay(Some(ray)).into())
+        .expect("a ray");
+    for kind in StructureKind::ALL {
+        let mut settings = lab.three().half.lane.settings;
+        settings.kind = kind;
+        lab.apply(PlaybackAction::GoTo(0).into()).expect("goes");
+        lab.apply(HalfAction::SetStructure(settings).into())
+            .expect("a structure");
+        tick(&mut lab);
+        assert_answer_shown(
+            &lab.three().half,
+            answer_3d(&lab),
+            &format!("3D {kind:?}, a new structure"),
+        );
+        lab.apply(PlaybackAction::GoTo(0).into()).expect("goes");
+        lab.apply(Action3d::SetRay(Some(ray)).into())
+            .expect("a ray");
+        assert!(answer_3d(&lab).is_some(), "3D {kind:?}: the ray hits");
+        assert_answer_shown(
+            &lab.three().half,
+            answer_3d(&lab),
+            &format!("3D {kind:?}, ray"),
+        );
+        lab.apply(PlaybackAction::GoTo(1).into()).expect("goes");
+        lab.apply(PlaybackAction::Play(true).into()).expect("plays");
+        assert!(lab.playing(), "3D {kind:?}: playing");
+        lab.apply(Action3d::SetPoint(Some(mid + Vec3::splat(0.1 * size))).into())
+            .expect("a point");
+        assert_answer_shown(
+            &lab.three().half,
+            answer_3d(&lab),
+            &format!("3D {kind:?}, point"),
+        );
+    }
+}

@@ -734,3 +734,363 @@ fn the_panel_shows_the_rays_handles_and_the_point_as_numbers() {
         );
     }
 }
+
+/// The versions of the algorithm offered in "Step through", with whether each is selected.
+fn variant_radios(h: &Harness<'_, LabApp>) -> Vec<(String, bool)> {
+    use egui::accesskit::Toggled;
+    h.query_all_by_role(Role::RadioButton)
+        .filter_map(|n| {
+            let node = n.accesskit_node();
+            let label = node.label()?;
+            let known = ["full (near first", "the slides'"];
+            known
+                .iter()
+                .any(|k| label.starts_with(k))
+                .then(|| (label, node.toggled() == Some(Toggled::True)))
+        })
+        .collect()
+}
+
+/// Asserts that exactly one version is selected, and that it is the one the lab runs.
+fn assert_one_variant_selected_and_run<P: bvhlab_app::model::dimension::LabPrimitive>(
+    h: &Harness<'_, LabApp>,
+    half: &bvhlab_app::model::half::Half<P>,
+    what: &str,
+) {
+    use bvhlab_app::panels::step_through::variant_label;
+    let radios = variant_radios(h);
+    let selected: Vec<&String> = radios.iter().filter(|r| r.1).map(|r| &r.0).collect();
+    assert_eq!(
+        selected.len(),
+        1,
+        "{what}: one version selected: {radios:?}"
+    );
+    let runs = half.lane.recorded().expect("a recording").question.variant;
+    assert_eq!(
+        selected[0],
+        variant_label(runs),
+        "{what}: the one selected runs"
+    );
+    assert_eq!(half.variant, runs, "{what}");
+}
+
+/// Issue 21: after "the slides' + pruning" for a point and then a ray, neither "full" nor
+/// "the slides' version" was selected while the lab ran the full one (2D and 3D).
+#[test]
+fn after_the_slides_pruned_nearest_a_ray_selects_the_version_that_runs() {
+    use bvhlab::glam::Vec3;
+    use bvhlab_app::model::mesh::MeshSource;
+    use bvhlab_app::model::{Action3d, Dimension};
+    use bvhlab_app::pseudocode::{Task, Variant};
+
+    let mut h = lab();
+    choose(&mut h, "Structure", StructureKind::AabbTree.label());
+    click(&mut h, "Query point");
+    let at = screen(&h, Vec2::new(7.3, 12.1));
+    click_at(&mut h, at);
+    click(&mut h, "the slides' + pruning");
+    let half = &h.state().lab().two().half;
+    assert_eq!(half.task, Task::Nearest);
+    assert_one_variant_selected_and_run(&h, half, "2D nearest");
+    assert_eq!(half.variant, Variant::LecturePruned);
+    act(&mut h, bvhlab_app::model::Action2d::SetTool(Tool::Ray));
+    drag_test_ray(&mut h);
+    let half = &h.state().lab().two().half;
+    assert_eq!(half.task, Task::FirstHit);
+    assert_one_variant_selected_and_run(&h, half, "2D ray after the pruned nearest");
+    assert_eq!(half.variant, Variant::Full);
+
+    // 3D, with the same panel.
+    act(
+        &mut h,
+        Action3d::OpenMesh(MeshSource::Builtin("tetrahedra".to_owned())),
+    );
+    for _ in 0..2_000 {
+        let three = h.state().lab().three();
+        if !three.busy() && three.half.lane.current(three.revision()).is_some() {
+            break;
+        }
+        h.step();
+    }
+    settle(&mut h);
+    assert_eq!(h.state().lab().dimension(), Dimension::Three);
+    let mut settings = h.state().lab().three().half.lane.settings;
+    settings.kind = StructureKind::AabbTree;
+    act(
+        &mut h,
+        bvhlab_app::model::HalfAction::SetStructure(settings),
+    );
+    settle(&mut h);
+    act(&mut h, Action3d::SetPoint(Some(Vec3::new(0.1, 0.2, 0.3))));
+    click(&mut h, "the slides' + pruning");
+    let half = &h.state().lab().three().half;
+    assert_eq!(half.task, Task::Nearest);
+    assert_one_variant_selected_and_run(&h, half, "3D nearest");
+    assert_eq!(half.variant, Variant::LecturePruned);
+    let ray = bvhlab::Ray3::new(Vec3::new(-5.0, 0.1, 0.2), Vec3::X).expect("a ray");
+    act(&mut h, Action3d::SetRay(Some(ray)));
+    let half = &h.state().lab().three().half;
+    assert_eq!(half.task, Task::FirstHit);
+    assert_one_variant_selected_and_run(&h, half, "3D ray after the pruned nearest");
+    assert_eq!(half.variant, Variant::Full);
+}
+
+/// Ctrl+Z (Cmd+Z on a Mac), Ctrl+Shift+Z and Ctrl+Y.
+fn press_with(h: &mut Harness<'_, LabApp>, modifiers: egui::Modifiers, key: Key) {
+    h.key_press_modifiers(modifiers, key);
+    settle(h);
+}
+
+const CTRL: egui::Modifiers = egui::Modifiers::COMMAND;
+
+/// Whether the button labelled `label` can be pressed.
+fn enabled(h: &Harness<'_, LabApp>, label: &str) -> bool {
+    !h.get_by_label(label).accesskit_node().is_disabled()
+}
+
+/// Issue 21: "Clear" asked nothing and could not be undone. Ctrl+Z brings every shape back,
+/// Ctrl+Shift+Z (or Ctrl+Y) clears again, the buttons beside "Clear" do the same, and the
+/// status line says what was undone.
+#[test]
+fn clear_then_ctrl_z_brings_every_shape_back_and_redo_clears_again() {
+    let mut h = lab();
+    let shapes = h.state().lab().two().scene.shapes().to_vec();
+    assert!(!shapes.is_empty());
+    assert!(
+        !enabled(&h, "Undo") && !enabled(&h, "Redo"),
+        "nothing to undo yet"
+    );
+    click(&mut h, "Clear");
+    assert!(h.state().lab().two().scene.shapes().is_empty());
+    assert!(enabled(&h, "Undo") && !enabled(&h, "Redo"));
+
+    press_with(&mut h, CTRL, Key::Z);
+    assert_eq!(
+        h.state().lab().two().scene.shapes(),
+        shapes,
+        "every shape is back"
+    );
+    let said = h.state().lab().message().unwrap_or_default().to_owned();
+    assert!(said.starts_with("Undid clearing the scene"), "{said}");
+    label_containing(&h, "Undid clearing the scene");
+    assert!(!enabled(&h, "Undo") && enabled(&h, "Redo"));
+    // The structure is built on the shapes that came back.
+    let two = h.state().lab().two();
+    assert!(two.half.lane.current(two.scene.revision()).is_some());
+
+    press_with(&mut h, CTRL | egui::Modifiers::SHIFT, Key::Z);
+    assert!(
+        h.state().lab().two().scene.shapes().is_empty(),
+        "redo clears again"
+    );
+    label_containing(&h, "Redid clearing the scene.");
+    click(&mut h, "Undo");
+    assert_eq!(h.state().lab().two().scene.shapes(), shapes);
+    press_with(&mut h, CTRL, Key::Y);
+    assert!(
+        h.state().lab().two().scene.shapes().is_empty(),
+        "Ctrl+Y redoes too"
+    );
+    click(&mut h, "Undo");
+    assert_eq!(h.state().lab().two().scene.shapes(), shapes);
+    // Nothing left to undo: the status line says so, and nothing changes.
+    press_with(&mut h, CTRL, Key::Z);
+    assert_eq!(h.state().lab().two().scene.shapes(), shapes);
+    label_containing(&h, "There is no scene edit to undo.");
+}
+
+/// A new edit after an undo forgets what could be redone; a drag is one edit; a preset is
+/// undone with the structure, ray and point it replaced.
+#[test]
+fn a_new_edit_after_undo_drops_the_redo_history() {
+    use bvhlab_app::model::presets::Preset;
+    use bvhlab_app::model::{Action2d, HalfAction};
+
+    let mut h = lab();
+    let start = h.state().lab().two().scene.shapes().to_vec();
+    let segment = |x: f32| Action2d::AddShape {
+        kind: ShapeKind::Segment,
+        points: vec![Vec2::new(x, 0.0), Vec2::new(x, 1.0)],
+    };
+    act(&mut h, segment(1.0));
+    act(&mut h, segment(2.0));
+    press_with(&mut h, CTRL, Key::Z);
+    assert_eq!(h.state().lab().two().history().redo_len(), 1);
+    assert!(enabled(&h, "Redo"));
+    label_containing(&h, "Undid adding a segment");
+    // A new edit: the undone one cannot come back.
+    act(&mut h, segment(3.0));
+    assert_eq!(h.state().lab().two().history().redo_len(), 0);
+    assert!(!enabled(&h, "Redo"));
+    press_with(&mut h, CTRL | egui::Modifiers::SHIFT, Key::Z);
+    label_containing(&h, "There is no undone scene edit to redo.");
+    let xs: Vec<f32> = h.state().lab().two().scene.shapes()[start.len()..]
+        .iter()
+        .map(|s| s.points[0].x)
+        .collect();
+    assert_eq!(xs, [1.0, 3.0]);
+    press_with(&mut h, CTRL, Key::Z);
+    press_with(&mut h, CTRL, Key::Z);
+    assert_eq!(h.state().lab().two().scene.shapes(), start);
+
+    // A drag in select mode moves the shape many times: one edit. Two drags: two.
+    click(&mut h, "Select / move");
+    let shapes = h.state().lab().two().scene.shapes().to_vec();
+    let grab = h.state().canvas_screen().world_length(10.0);
+    let (index, mid) = shapes
+        .iter()
+        .enumerate()
+        .map(|(i, s)| (i, (s.points[0] + s.points[1]) * 0.5))
+        .find(|&(i, m)| {
+            shapes
+                .iter()
+                .enumerate()
+                .all(|(j, s)| j == i || s.distance(m) > 2.0 * grab)
+        })
+        .expect("some shape stands alone");
+    let from = screen(&h, mid);
+    drag(&mut h, from, from + vec2(60.0, 0.0));
+    let once = h.state().lab().two().scene.shapes()[index].clone();
+    drag(&mut h, from + vec2(60.0, 0.0), from + vec2(60.0, 60.0));
+    assert_ne!(h.state().lab().two().scene.shapes()[index], once);
+    press_with(&mut h, CTRL, Key::Z);
+    label_containing(&h, "Undid moving a shape");
+    assert_eq!(
+        h.state().lab().two().scene.shapes()[index],
+        once,
+        "the second drag"
+    );
+    press_with(&mut h, CTRL, Key::Z);
+    assert_eq!(
+        h.state().lab().two().scene.shapes(),
+        shapes,
+        "the first drag"
+    );
+
+    // A preset, undone, brings back the scene and the structure it replaced.
+    let mut settings = h.state().lab().two().half.lane.settings;
+    settings.kind = StructureKind::Grid;
+    act(&mut h, HalfAction::SetStructure(settings));
+    act(&mut h, Action2d::LoadPreset(Preset::KdHandful));
+    assert_ne!(h.state().lab().two().scene.shapes(), shapes);
+    press_with(&mut h, CTRL, Key::Z);
+    assert_eq!(h.state().lab().two().scene.shapes(), shapes);
+    assert_eq!(h.state().lab().two().half.lane.settings, settings);
+    label_containing(&h, "Undid loading the preset");
+}
+
+/// The history keeps the last `MAX_UNDO` edits: older ones are forgotten.
+#[test]
+fn the_undo_history_is_bounded() {
+    use bvhlab_app::model::history::MAX_UNDO;
+    use bvhlab_app::model::{Action2d, Lab};
+
+    let mut lab = Lab::default();
+    let start = lab.two().scene.shapes().len();
+    let extra = 7;
+    for i in 0..MAX_UNDO + extra {
+        lab.apply(
+            Action2d::AddShape {
+                kind: ShapeKind::Points,
+                points: vec![Vec2::new(i as f32, -3.0)],
+            }
+            .into(),
+        )
+        .expect("adds");
+    }
+    assert_eq!(lab.two().history().undo_len(), MAX_UNDO);
+    for _ in 0..MAX_UNDO {
+        lab.apply(Action2d::Undo.into()).expect("undoes");
+    }
+    // The oldest edits were forgotten: their shapes stay.
+    assert_eq!(lab.two().scene.shapes().len(), start + extra);
+    assert_eq!(lab.two().history().undo_len(), 0);
+    assert!(lab.apply(Action2d::Undo.into()).is_err(), "nothing more");
+    assert_eq!(lab.two().history().redo_len(), MAX_UNDO);
+    for _ in 0..MAX_UNDO {
+        lab.apply(Action2d::Redo.into()).expect("redoes");
+    }
+    assert_eq!(lab.two().scene.shapes().len(), start + MAX_UNDO + extra);
+    assert!(lab.apply(Action2d::Redo.into()).is_err());
+}
+
+/// The tree diagram's area, and the rectangles of the texts it drew (the leaves' counts),
+/// with the rectangle each was clipped to.
+fn tree_area_and_labels(h: &Harness<'_, LabApp>) -> (egui::Rect, Vec<(egui::Rect, egui::Rect)>) {
+    let area = h.state().ui.trees.two[0].area().expect("a tree is drawn");
+    let labels = h
+        .output()
+        .shapes
+        .iter()
+        .filter(|c| area.contains_rect(c.clip_rect))
+        .filter_map(|c| match &c.shape {
+            egui::Shape::Text(t) => Some((t.visual_bounding_rect(), c.clip_rect)),
+            _ => None,
+        })
+        .collect();
+    (area, labels)
+}
+
+/// Issue 21: after "Clear" (and after reloading that state) the tree diagram collapsed to a
+/// thin strip at the bottom and never came back, and the deepest row's labels were cut off.
+#[test]
+fn after_clear_and_a_preset_the_tree_diagram_has_its_height_and_every_label_inside() {
+    use bvhlab_app::model::Lab;
+    use bvhlab_app::model::presets::Preset;
+    use bvhlab_app::persist::SavedState;
+    use bvhlab_app::tree_diagram::MIN_HEIGHT;
+
+    let mut h = lab();
+    click(&mut h, "Clear");
+    assert!(h.state().ui.trees.two[0].area().is_none(), "no tree");
+    // Reloading the cleared state (the UI's memory, such as panel sizes, stays).
+    let saved = SavedState::capture(h.state().lab());
+    let mut reloaded = Lab::default();
+    reloaded
+        .apply(saved.apply().expect("a captured state applies"))
+        .expect("restores");
+    assert!(reloaded.two().scene.shapes().is_empty());
+    h.state_mut().replace_lab(reloaded);
+    settle(&mut h);
+    choose(&mut h, "Preset", Preset::KdHandful.label());
+    settle(&mut h);
+    let (area, labels) = tree_area_and_labels(&h);
+    assert!(
+        area.height() >= MIN_HEIGHT,
+        "the diagram is {} points high",
+        area.height()
+    );
+    let leaves = {
+        let two = h.state().lab().two();
+        let lane = &two.half.lane;
+        let outline = lane
+            .current(two.scene.revision())
+            .and_then(|s| s.outline.as_ref())
+            .expect("an outline");
+        outline.iter().filter(|n| n.is_leaf()).count()
+    };
+    assert_eq!(
+        labels.len(),
+        leaves,
+        "every leaf's count is drawn: {labels:?}"
+    );
+    for (text, clip) in labels {
+        assert_eq!(clip, area, "the diagram is not clipped by its panel");
+        assert!(area.contains_rect(text), "{text:?} lies inside {area:?}");
+    }
+    // The resize handle: a grip drawn on the panel's top edge, in a colour that shows.
+    let panel = h.state().ui.tree_rect.expect("the panel is shown");
+    let fill = h.ctx.global_style().visuals.panel_fill;
+    let grip = h.output().shapes.iter().find_map(|c| match &c.shape {
+        egui::Shape::Rect(r)
+            if r.rect.width() >= 24.0
+                && (r.rect.center() - panel.center_top()).length() <= 3.0
+                && r.fill != fill
+                && r.fill.a() > 0 =>
+        {
+            Some(r.rect)
+        }
+        _ => None,
+    });
+    assert!(grip.is_some(), "a grip on the tree panel's top edge");
+}

@@ -111,9 +111,11 @@ fn parse_panels(value: &str) -> Result<Panels, String> {
                     panels.tree3d = true;
                 }
                 other => {
-                    return Err(format!(
-                        "the address's panels has \"{}\"; the panels are controls, stepper and tree",
-                        short(other)
+                    return Err(unknown(
+                        "panels",
+                        "panel",
+                        other,
+                        &["controls", "stepper", "tree"],
                     ));
                 }
             }
@@ -156,28 +158,32 @@ impl StartParams {
             "preset" => {
                 self.preset = Some(Preset::from_slug(value).ok_or_else(|| {
                     let known: Vec<&str> = Preset::ALL.iter().map(|p| p.slug()).collect();
-                    format!(
-                        "the address asks for the preset \"{}\"; the lab has {}",
-                        short(value),
-                        known.join(", ")
-                    )
+                    unknown("preset", "preset", value, &known)
                 })?);
             }
             "mesh" => {
                 let known = bvhlab_meshio::builtin::list();
                 if !known.iter().any(|b| b.slug == value) {
                     let slugs: Vec<&str> = known.iter().map(|b| b.slug).collect();
-                    return Err(format!(
-                        "the address asks for the mesh \"{}\"; the lab has {}",
-                        short(value),
-                        slugs.join(", ")
-                    ));
+                    return Err(unknown("mesh", "mesh", value, &slugs));
                 }
                 self.mesh = Some(value.to_owned());
             }
-            "structure" => self.structure = Some(named("structure", value)?),
-            "compare" => self.compare = Some(named("compare", value)?),
-            "task" => self.task = Some(named("task", value)?),
+            "structure" | "compare" => {
+                let structure = StructureName::from_name(value)
+                    .ok_or_else(|| unknown(name, "structure", value, StructureName::NAMES))?;
+                if name == "structure" {
+                    self.structure = Some(structure);
+                } else {
+                    self.compare = Some(structure);
+                }
+            }
+            "task" => {
+                self.task = Some(
+                    TaskName::from_name(value)
+                        .ok_or_else(|| unknown(name, "task", value, TaskName::NAMES))?,
+                );
+            }
             "ray" => self.ray = Some(numbers("ray", value, &[4, 6])?),
             "point" => self.point = Some(numbers("point", value, &[2, 3])?),
             "step" => {
@@ -369,10 +375,13 @@ fn ray3(n: &[f32]) -> Result<Ray3, String> {
         .map_err(|e| format!("the address's ray: {e}"))
 }
 
-/// One of the scene format's names (`kd-tree`, `first-hit`), read as the format reads it.
-fn named<T: serde::de::DeserializeOwned>(what: &str, value: &str) -> Result<T, String> {
-    serde_json::from_value(serde_json::Value::String(value.to_owned()))
-        .map_err(|e| format!("the address's {what}: {e}"))
+/// What the address's `parameter` says when its `value` names no `kind` the lab has:
+/// `the address's structure: no structure named "kdtree"; try kd-tree, aabb-tree, ...`.
+fn unknown(parameter: &str, kind: &str, value: &str, names: &[&str]) -> String {
+    format!(
+        "the address's {parameter}: {}",
+        crate::persist::no_such_name(kind, value, names)
+    )
 }
 
 /// Comma-separated finite numbers within the lab's range, as many as one of `counts`.

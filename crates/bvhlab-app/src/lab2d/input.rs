@@ -247,9 +247,14 @@ impl Tools<'_, '_> {
             && let Some(p0) = input.press
             && let Some(i) = lab.scene.pick(p0, input.grab)
         {
-            if !lab.selection.contains(&i) {
-                self.cx.act(Action2d::Select(vec![i]));
-            }
+            // Selecting (even the shapes already selected) makes this drag a new edit, so
+            // that two drags are undone one at a time.
+            let selection = if lab.selection.contains(&i) {
+                lab.selection.clone()
+            } else {
+                vec![i]
+            };
+            self.cx.act(Action2d::Select(selection));
             *self.drag = Interaction::Move(p0);
         }
         if input.dragged

@@ -57,6 +57,12 @@ pub enum Action2d {
     LoadPreset(Preset),
     /// Removes every shape.
     Clear,
+    /// Undoes the last scene edit (a shape added, moved or deleted, the scene cleared, a
+    /// preset loaded); refused when there is none.
+    Undo,
+    /// Redoes the last scene edit undone; refused when there is none (a new edit forgets
+    /// what could be redone).
+    Redo,
     /// Adds a shape.
     AddShape {
         /// What the points make.
@@ -156,6 +162,39 @@ pub enum PlaybackAction {
     Toggle,
     /// Steps per second while playing.
     SetSpeed(f32),
+}
+
+impl Action {
+    /// Whether the action asks a new question: it changes what is recorded (the scene or
+    /// mesh, the structures, the task, variant, k, radius, the ray or the point). Playback
+    /// then shows the new answer, at the end ([`super::playback`]'s rule). Framing a mesh
+    /// just loaded is not one: opening it was.
+    pub fn asks_new_question(&self) -> bool {
+        match self {
+            Self::Two(a) => matches!(
+                a,
+                Action2d::LoadPreset(_)
+                    | Action2d::Clear
+                    | Action2d::Undo
+                    | Action2d::Redo
+                    | Action2d::AddShape { .. }
+                    | Action2d::AddToCloud { .. }
+                    | Action2d::MoveSelection(_)
+                    | Action2d::DeleteSelection
+                    | Action2d::SetRay(_)
+                    | Action2d::SetPoint(_)
+            ),
+            Self::Three(a) => matches!(
+                a,
+                Action3d::SetTool(_)
+                    | Action3d::OpenMesh(_)
+                    | Action3d::SetRay(_)
+                    | Action3d::SetPoint(_)
+            ),
+            Self::Half(a) => !matches!(a, HalfAction::Playback(_)),
+            Self::Show(_) | Self::SetMessage(_) | Self::Restore(_) | Self::Tick { .. } => false,
+        }
+    }
 }
 
 impl From<Action2d> for Action {

@@ -22,6 +22,12 @@ impl Lab {
     /// Why the action cannot apply, in a sentence for the status line; the lab is then
     /// unchanged.
     pub fn apply(&mut self, action: Action) -> Result<(), String> {
+        // The half whose question the action changes, if it asks a new one.
+        let asks = action.asks_new_question().then_some(match &action {
+            Action::Three(_) => Dimension::Three,
+            Action::Half(_) => self.dimension,
+            _ => Dimension::Two,
+        });
         let note = match action {
             Action::Show(dimension) => {
                 if dimension == self.dimension {
@@ -68,6 +74,12 @@ impl Lab {
                 Note::Keep
             }
         };
+        // A new question shows its answer (the rule is in `super::playback`).
+        match asks {
+            Some(Dimension::Two) => self.two.half.playback.new_question(),
+            Some(Dimension::Three) => self.three.half.playback.new_question(),
+            None => {}
+        }
         match note {
             Note::Keep => {}
             Note::Clear => self.message = None,
@@ -165,7 +177,25 @@ where
             None => half.compare = None,
         },
         HalfAction::SetTask(task) => half.set_task(task),
-        HalfAction::SetVariant(variant) => half.variant = variant,
+        HalfAction::SetVariant(variant) => {
+            // The panel offers only the task's versions: one of them is always the one shown
+            // selected and run.
+            let offered = variants(half.lane.settings.kind, half.task);
+            if !offered.contains(&variant) {
+                let name = |v: Variant| match v {
+                    Variant::Full => "the full version",
+                    Variant::Lecture => "the slides' version",
+                    Variant::LecturePruned => "the slides' version with pruning",
+                };
+                let has: Vec<&str> = offered.into_iter().map(name).collect();
+                return Err(format!(
+                    "this task on this structure has no {}; it has {}",
+                    name(variant),
+                    has.join(" and ")
+                ));
+            }
+            half.variant = variant;
+        }
         HalfAction::SetK(k) => {
             if !(1..=MAX_K).contains(&k) {
                 return Err(format!("k is {k}; it must be 1 to {MAX_K}"));

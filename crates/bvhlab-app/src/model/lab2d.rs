@@ -10,6 +10,7 @@ use super::Note;
 use super::action::Action2d;
 use super::camera2d::Camera2d;
 use super::half::Half;
+use super::history::{Edit, History, PresetSetup, SceneState};
 use super::lane::BuildBudget;
 use super::presets::Preset;
 use super::scene::{Primitives, Scene, Shape, ShapeKind};
@@ -97,6 +98,8 @@ pub struct Lab2d {
     pub obb_pair: Option<ObbPair>,
     /// The structures, the question and playback.
     pub half: Half<Segment2>,
+    /// The scene edits that can be undone and redone.
+    pub(super) history: History,
     /// The scene's primitives, derived once per scene revision.
     prims: Primitives,
     prims_revision: Option<u64>,
@@ -122,6 +125,7 @@ impl Default for Lab2d {
             volumes: VolumeToggles::default(),
             obb_pair: None,
             half: Half::new(settings, 3.0),
+            history: History::default(),
             prims: Primitives::default(),
             prims_revision: None,
             fits: None,
@@ -140,6 +144,11 @@ impl Lab2d {
     /// for an empty scene.
     pub fn fits(&self) -> Option<&Fits> {
         self.fits.as_ref()
+    }
+
+    /// The scene edits that can be undone and redone.
+    pub fn history(&self) -> &History {
+        &self.history
     }
 
     /// The ray, when its handles make one.
@@ -213,6 +222,10 @@ impl Lab2d {
     /// # Errors
     /// Why the action cannot apply; nothing changed then.
     pub(super) fn apply(&mut self, action: Action2d) -> Result<Note, String> {
+        if !matches!(action, Action2d::MoveSelection(_)) {
+            // A drag's moves are one edit, until anything else happens.
+            self.history.close_move();
+        }
         match action {
             Action2d::SetTool(tool) => {
                 if tool == Tool::Obb && self.obb_pair.is_none() {
@@ -222,7 +235,19 @@ impl Lab2d {
                 self.tool = tool;
                 return Ok(Note::Clear);
             }
-            Action2d::LoadPreset(preset) => self.load_preset(preset),
+            Action2d::LoadPreset(preset) => {
+                let before = self.scene_state(true);
+                self.load_preset(preset);
+                // Reloading a preset that was not touched changes nothing to undo.
+                if before.scene.shapes() != self.scene.shapes()
+                    || before.setup != Some(self.preset_setup())
+                {
+                    self.history
+                        .record(before, format!("loading the preset \"{}\"", preset.label()));
+                }
+            }
+            Action2d::Undo => return self.undo(),
+            Action2d::Redo => return self.redo(),
             Action2d::Clear
             | Action2d::AddShape { .. }
             | Action2d::AddToCloud { .. }
@@ -273,8 +298,41 @@ impl Lab2d {
         Ok(Note::Keep)
     }
 
-    /// The scene's edits: adding, moving, selecting, deleting shapes.
+    /// The scene's edits (adding, moving, selecting, deleting shapes, clearing), each kept
+    /// in the history so that it can be undone (a drag's moves as one edit).
     fn edit_scene(&mut self, action: Action2d) -> Result<Note, String> {
+        let selection = self.selection.clone();
+        let what = match &action {
+            Action2d::MoveSelection(_) if self.history.continues_move(&selection) => None,
+            Action2d::Clear => Some("clearing the scene".to_owned()),
+            Action2d::AddShape { kind, .. } => Some(format!("adding a {}", kind.label())),
+            Action2d::AddToCloud { .. } => Some("adding a point to a point cloud".to_owned()),
+            // Named by `record_move`.
+            Action2d::MoveSelection(_) => Some(String::new()),
+            Action2d::DeleteSelection if selection.len() == 1 => {
+                Some("deleting a shape".to_owned())
+            }
+            Action2d::DeleteSelection => Some(format!("deleting {} shapes", selection.len())),
+            // Selecting changes no shape.
+            _ => None,
+        };
+        let is_move = matches!(action, Action2d::MoveSelection(_));
+        let before = what.is_some().then(|| self.scene_state(false));
+        let note = self.change_scene(action)?;
+        if let (Some(before), Some(what)) = (before, what)
+            && before.scene.shapes() != self.scene.shapes()
+        {
+            if is_move {
+                self.history.record_move(before, &selection);
+            } else {
+                self.history.record(before, what);
+            }
+        }
+        Ok(note)
+    }
+
+    /// What the scene edits change.
+    fn change_scene(&mut self, action: Action2d) -> Result<Note, String> {
         match action {
             Action2d::Clear => {
                 self.scene.clear();
@@ -329,5 +387,73 @@ impl Lab2d {
             _ => {}
         }
         Ok(Note::Keep)
+    }
+}
+
+/// Undo and redo (the history is [`super::history`]).
+impl Lab2d {
+    /// The part of the half a scene edit changes (`setup`: and what a preset replaces).
+    fn scene_state(&self, setup: bool) -> SceneState {
+        SceneState {
+            scene: self.scene.clone(),
+            selection: self.selection.clone(),
+            preset: self.preset,
+            setup: setup.then(|| self.preset_setup()),
+        }
+    }
+
+    /// What loading a preset replaces besides the scene.
+    fn preset_setup(&self) -> PresetSetup {
+        PresetSetup {
+            settings: self.half.lane.settings,
+            ray: self.ray,
+            point: self.point,
+            volumes_shown: self.display.volumes,
+        }
+    }
+
+    /// Puts `state` back; returns the state it replaced (with as much of the setup).
+    fn swap_scene_state(&mut self, state: SceneState) -> SceneState {
+        let replaced = self.scene_state(state.setup.is_some());
+        self.scene = state.scene;
+        self.selection = state.selection;
+        self.preset = state.preset;
+        if let Some(setup) = state.setup {
+            self.half.lane.settings = setup.settings;
+            self.ray = setup.ray;
+            self.point = setup.point;
+            self.display.volumes = setup.volumes_shown;
+            // Another scene: frame it, as loading a preset does.
+            self.fit_pending = true;
+        }
+        replaced
+    }
+
+    /// Undoes the last scene edit.
+    fn undo(&mut self) -> Result<Note, String> {
+        let Some(edit) = self.history.take_undo() else {
+            return Err("there is no scene edit to undo".to_owned());
+        };
+        let state = self.swap_scene_state(edit.state);
+        let said = format!("Undid {} (Ctrl+Shift+Z redoes it).", edit.what);
+        self.history.push_redo(Edit {
+            state,
+            what: edit.what,
+        });
+        Ok(Note::Say(said))
+    }
+
+    /// Redoes the last scene edit undone.
+    fn redo(&mut self) -> Result<Note, String> {
+        let Some(edit) = self.history.take_redo() else {
+            return Err("there is no undone scene edit to redo".to_owned());
+        };
+        let state = self.swap_scene_state(edit.state);
+        let said = format!("Redid {}.", edit.what);
+        self.history.push_undo(Edit {
+            state,
+            what: edit.what,
+        });
+        Ok(Note::Say(said))
     }
 }

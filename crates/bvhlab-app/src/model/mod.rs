@@ -21,7 +21,8 @@
 //!   force's; [`structures`]: one dispatch over the core's structures.
 //! - [`scene`], [`presets`], [`volumes`], [`camera2d`]: the 2D half's data; [`mesh`],
 //!   [`orbit_camera`], [`heat`]: the 3D half's; [`tools`]: what a press does in each.
-//! - [`action`]: every change; [`restore`]: a whole state, checked.
+//! - [`action`]: every change; [`restore`]: a whole state, checked; [`history`]: the 2D
+//!   scene's edits, to undo and redo.
 
 pub mod action;
 mod apply;
@@ -30,6 +31,7 @@ pub mod camera2d;
 pub mod dimension;
 pub mod half;
 pub mod heat;
+pub mod history;
 pub mod lab2d;
 pub mod lab3d;
 pub mod lane;

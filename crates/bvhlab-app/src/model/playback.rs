@@ -1,6 +1,22 @@
 //! The playback transport: where playback is in a recording (a step, or live at its end),
 //! whether it plays, and how fast. What the algorithm's state is at that step is
 //! [`Snapshot`](super::snapshot::Snapshot)'s job.
+//!
+//! # Where playback stands after a new question
+//!
+//! One rule, for both halves and every structure and task: **a new question shows its
+//! answer.** A new question is an action that changes what is recorded
+//! ([`Action::asks_new_question`](super::Action::asks_new_question)): the scene (a shape
+//! added, moved or deleted, the scene cleared, an undo or redo, a preset), the mesh opened,
+//! the structure or the one compared with, the task, the variant, k, the radius, the ray or
+//! the point. After it, playback stands at the end of the new recording, live (it follows the
+//! end while the ray is dragged or a 3D build finishes), with the answer drawn, and it stops
+//! if it was playing ([`Playback::new_question`]). `Lab::apply` applies the rule, in one place.
+//!
+//! Stepping through the new question is one key away: Home goes to step 0, and Play starts
+//! from the beginning when at the end. Only playback's own actions move the step; a saved
+//! state, and the page's address (`step=`, applied after its question), put it where they
+//! say.
 
 /// The transport: where playback is and whether it runs.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -38,6 +54,13 @@ impl Playback {
         } else {
             self.step = self.step.min(len);
         }
+    }
+
+    /// A new question: to the end, live, and not playing (see the module's rule).
+    pub fn new_question(&mut self) {
+        self.at_end = true;
+        self.playing = false;
+        self.carry = 0.0;
     }
 
     /// Goes to `step` (clamped), leaving live mode unless it is the end.

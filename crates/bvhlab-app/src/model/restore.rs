@@ -119,6 +119,8 @@ impl RestoreHalf {
         half.compare = self.compare.map(Lane::new);
         half.task = self.task;
         half.variant = self.variant;
+        // A file may name a version the task lacks: the full one runs, and is shown.
+        half.set_task(self.task);
         half.k = self.k;
         let speed = half.playback.speed;
         half.playback = Playback::default();
@@ -141,6 +143,8 @@ impl Restore2d {
         lab.point = self.point;
         lab.camera = self.camera;
         lab.fit_pending = false;
+        // Undoing an edit made before would bring back a scene of another state.
+        lab.history = super::history::History::default();
     }
 }
 

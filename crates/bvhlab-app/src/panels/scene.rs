@@ -1,4 +1,5 @@
-//! The 2D scene: the canvas's tool, the presets, and clearing, deleting and counting shapes.
+//! The 2D scene: the canvas's tool, the presets, and clearing, undoing, deleting and counting
+//! shapes.
 
 use super::Panel;
 use crate::model::Action2d;
@@ -51,6 +52,29 @@ impl Panel for Scene {
             }
             if ui.button("Clear").clicked() {
                 cx.act(Action2d::Clear);
+            }
+        });
+        ui.horizontal(|ui| {
+            let history = lab.history();
+            let undo = ui
+                .add_enabled(history.next_undo().is_some(), egui::Button::new("Undo"))
+                .on_hover_text(history.next_undo().map_or_else(
+                    || "No scene edit to undo".to_owned(),
+                    |what| format!("Undo {what} (Ctrl+Z)"),
+                ))
+                .on_disabled_hover_text("No scene edit to undo");
+            if undo.clicked() {
+                cx.act(Action2d::Undo);
+            }
+            let redo = ui
+                .add_enabled(history.next_redo().is_some(), egui::Button::new("Redo"))
+                .on_hover_text(history.next_redo().map_or_else(
+                    || "Nothing undone to redo".to_owned(),
+                    |what| format!("Redo {what} (Ctrl+Shift+Z or Ctrl+Y)"),
+                ))
+                .on_disabled_hover_text("Nothing undone to redo");
+            if redo.clicked() {
+                cx.act(Action2d::Redo);
             }
         });
         let n_sel = lab.selection.len();

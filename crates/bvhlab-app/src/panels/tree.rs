@@ -13,6 +13,12 @@ use crate::model::lane::Lane;
 use crate::tree_diagram::{TreeDiagram, TreeHighlight};
 use crate::ui_state::{Cx, UiState};
 
+/// The panel's least height: the diagram's least height, with room above it for the "Fit"
+/// row and a grid's caption.
+pub const MIN_PANEL_HEIGHT: f32 = crate::tree_diagram::MIN_HEIGHT + 60.0;
+/// The panel's height when the lab opens.
+pub const DEFAULT_PANEL_HEIGHT: f32 = 230.0;
+
 /// What lane `index`'s diagram highlights this frame.
 fn highlight<'a, P: LabPrimitive>(
     half: &'a Half<P>,
@@ -63,6 +69,11 @@ fn outline<P: LabPrimitive>(
 /// The panel's content: one diagram per lane of the half shown.
 pub fn tree_panel(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
     let lab = cx.lab;
+    resize_grip(ui);
+    // The panel keeps the height it was given whatever it shows. (A panel is as high as its
+    // content, and egui remembers that height: after "Clear" the one-line message made it a
+    // strip, and the diagram, which fills the height it is given, kept it one.)
+    ui.set_min_height(ui.available_height());
     cx.ui.tree_rect = Some(ui.max_rect());
     let hovered = match lab.dimension() {
         Dimension::Two => {
@@ -102,6 +113,15 @@ pub fn tree_panel(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
     if hovered.is_some() {
         cx.ui.hovered = hovered;
     }
+}
+
+/// A grip centred on the panel's top edge, where it is dragged to resize (egui's own edge
+/// line is too faint to find).
+fn resize_grip(ui: &egui::Ui) {
+    let top = ui.max_rect().center_top();
+    let grip = egui::Rect::from_center_size(top - egui::vec2(0.0, 1.0), egui::vec2(36.0, 4.0));
+    let color = ui.visuals().widgets.inactive.fg_stroke.color;
+    ui.painter().rect_filled(grip, 2.0, color);
 }
 
 /// Shows each lane's diagram in a column; the node hovered, if any.

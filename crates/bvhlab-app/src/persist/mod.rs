@@ -26,7 +26,7 @@ mod actions;
 mod file;
 mod link;
 mod names;
-pub(crate) use names::shorten;
+pub(crate) use names::{no_such_name, shorten};
 mod restore;
 mod state;
 mod state3d;

@@ -43,6 +43,19 @@ macro_rules! stable_names {
             )+
         }
 
+        impl $name {
+            /// Every stored name, in the order declared.
+            pub const NAMES: &'static [&'static str] = &[$($text,)+];
+
+            /// The variant stored as `text`, if any.
+            pub fn from_name(text: &str) -> Option<Self> {
+                match text {
+                    $($text => Some(Self::$variant),)+
+                    _ => None,
+                }
+            }
+        }
+
         impl From<$target> for $name {
             fn from(value: $target) -> Self {
                 match value {
@@ -190,4 +203,47 @@ pub(crate) fn shorten(text: &str, max: usize) -> Cow<'_, str> {
         Some((cut, _)) => Cow::Owned(format!("{}…", &text[..cut])),
         None => Cow::Borrowed(text),
     }
+}
+
+/// What the lab says about a name it does not know: `no structure named "kdtree"; try
+/// kd-tree, aabb-tree, ...`, every name it knows listed, the nearest spelling first (so a
+/// dropped hyphen or a typo is answered with the name meant).
+pub fn no_such_name(kind: &str, value: &str, names: &[&str]) -> String {
+    let typed = comparable(value);
+    let mut sorted: Vec<(usize, &str)> = names
+        .iter()
+        .map(|n| (edit_distance(&typed, &comparable(n)), *n))
+        .collect();
+    // Stable: equally near names keep their listed order.
+    sorted.sort_by_key(|&(d, _)| d);
+    let list: Vec<&str> = sorted.into_iter().map(|(_, n)| n).collect();
+    format!(
+        "no {kind} named \"{}\"; try {}",
+        shorten(value, 40),
+        list.join(", ")
+    )
+}
+
+/// A name as compared for nearness: lower case, without hyphens, underscores and spaces.
+fn comparable(text: &str) -> Vec<char> {
+    text.chars()
+        .take(64)
+        .filter(|c| !matches!(c, '-' | '_' | ' '))
+        .flat_map(char::to_lowercase)
+        .collect()
+}
+
+/// Levenshtein's distance: the fewest insertions, deletions and substitutions from `a` to `b`.
+fn edit_distance(a: &[char], b: &[char]) -> usize {
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.iter().enumerate() {
+        let mut diagonal = row[0];
+        row[0] = i + 1;
+        for (j, cb) in b.iter().enumerate() {
+            let substituted = diagonal + usize::from(ca != cb);
+            diagonal = row[j + 1];
+            row[j + 1] = substituted.min(row[j] + 1).min(diagonal + 1);
+        }
+    }
+    row[b.len()]
 }

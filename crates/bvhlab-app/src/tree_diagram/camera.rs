@@ -14,6 +14,11 @@ use super::layout::{Arrangement, Layout};
 
 /// Room left around the fitted diagram, in points.
 const PAD: f32 = 16.0;
+/// The largest radius of a node's dot (half the side of a leaf's square), in points.
+const MAX_RADIUS: f32 = 9.0;
+/// Room left under the deepest row of a fitted tree: its leaves' squares and, below them, the
+/// primitive counts (a line of 11-point text: see `draw.rs`).
+const BELOW_DEEPEST: f32 = MAX_RADIUS + 1.0 + 16.0;
 /// The widest spacing "fit" gives neighbouring nodes, in points.
 const FIT_X: f32 = 40.0;
 /// The widest spacing "fit" gives levels, in points.
@@ -42,6 +47,7 @@ impl Camera {
         let (w, h) = (inner.width().max(1.0), inner.height().max(1.0));
         match layout.arrangement {
             Arrangement::Tree { levels } => {
+                let h = (h - (BELOW_DEEPEST - PAD)).max(1.0);
                 let x_scale = if layout.x_max > 0.0 {
                     (w / layout.x_max).min(FIT_X)
                 } else {
@@ -116,7 +122,7 @@ impl Camera {
         if self.uniform {
             (0.42 * self.x_scale).max(0.5)
         } else {
-            (0.36 * self.x_scale.min(self.y_scale)).clamp(1.5, 9.0)
+            (0.36 * self.x_scale.min(self.y_scale)).clamp(1.5, MAX_RADIUS)
         }
     }
 }

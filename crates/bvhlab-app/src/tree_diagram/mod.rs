@@ -36,7 +36,7 @@ pub const EMPTY_MESSAGE: &str =
 /// Within this many points of a node's dot, the pointer is on it.
 const HOVER_SLOP: f32 = 4.0;
 /// The least height of the diagram, in points.
-const MIN_HEIGHT: f32 = 80.0;
+pub const MIN_HEIGHT: f32 = 80.0;
 
 /// What the diagram highlights this frame.
 #[derive(Clone, Copy, Debug)]
@@ -88,6 +88,8 @@ pub struct TreeResponse {
 pub struct TreeDiagram {
     /// The diagram's height in points; `None` fills the available height.
     pub height: Option<f32>,
+    /// Where the diagram was last drawn (`None` while there is no tree to draw).
+    area: Option<Rect>,
     layout: Option<Layout>,
     viewport: Viewport,
     /// Reused every frame, so painting does not allocate a new list.
@@ -106,6 +108,7 @@ impl TreeDiagram {
     ) -> TreeResponse {
         if outline.is_empty() {
             self.layout = None;
+            self.area = None;
             ui.label(EMPTY_MESSAGE);
             return TreeResponse::default();
         }
@@ -133,6 +136,7 @@ impl TreeDiagram {
         let size = vec2(ui.available_width(), height);
         let (response, painter) = ui.allocate_painter(size, Sense::click_and_drag());
         let rect = response.rect;
+        self.area = Some(rect);
         let camera = self.viewport.update(ui, &response, layout, highlight);
         let hovered = response
             .hover_pos()
@@ -168,6 +172,11 @@ impl TreeDiagram {
             hovered: hovered.map(|id| NodeId(id as u32)),
             clicked: clicked.map(|id| NodeId(id as u32)),
         }
+    }
+
+    /// Where the diagram (below its "Fit" button and summary) was last drawn, if a tree was.
+    pub fn area(&self) -> Option<Rect> {
+        self.area
     }
 
     /// Where node `id` was drawn in the last frame [`show`](Self::show) painted, if any.
