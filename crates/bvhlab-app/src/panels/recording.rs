@@ -3,7 +3,7 @@
 //! brute force's), the nodes waiting, the best answer so far, and a build's split.
 
 use bvhlab::Vector;
-use egui::{Color32, RichText};
+use egui::RichText;
 
 use super::step_through::variant_label;
 use crate::model::recording::Recording;
@@ -40,12 +40,14 @@ pub fn recording_state<V: Vector>(
         Some(e) => format!("step {}: {}", snap.step, describe(e)),
         None => format!("step 0 of {}: nothing done yet", rec.events.len()),
     });
-    if let Some(code) = crate::pseudocode::pseudocode(kind, q.task, q.variant) {
-        pseudocode_view(code, line, index, ui);
-    }
+    // The counters come before the listing, so that a short panel (an embedded lab) shows
+    // them with the sentence.
     // A build tests nothing: its counters would all be zero.
     if q.task != Task::Build {
         counters_table(rec, snap, index, ui);
+    }
+    if let Some(code) = crate::pseudocode::pseudocode(kind, q.task, q.variant) {
+        pseudocode_view(code, line, index, ui);
     }
     if rec.variant_costs.len() > 1 {
         for (v, c) in &rec.variant_costs {
@@ -61,7 +63,7 @@ pub fn recording_state<V: Vector>(
     frontier_view(snap, ui);
     best_view(rec.question.task, snap, ui);
     if q.task == Task::Build {
-        super::split::split_view(rec, kind, snap, ui);
+        super::split::split_view(rec, kind, snap, index, ui);
     }
 }
 
@@ -72,34 +74,51 @@ fn pseudocode_view(
     ui: &mut egui::Ui,
 ) {
     ui.label(RichText::new(code.title).strong());
+    // All of the listing in a tall panel; in a short one, part of it (scrolled to the
+    // current line) so that the rest of the panel stays in reach.
+    let max_height = (ui.clip_rect().height() * 0.45).max(90.0);
+    let palette = crate::theme::code_palette(ui.ctx().theme());
     egui::Frame::new()
-        .fill(Color32::from_rgb(20, 22, 28))
+        .fill(palette.background)
         .inner_margin(6.0)
         .show(ui, |ui| {
-            egui::ScrollArea::horizontal()
+            egui::ScrollArea::both()
                 .id_salt(("code", index))
-                .show(ui, |ui| code_lines(code, line, ui));
+                .max_height(max_height)
+                .auto_shrink([false, true])
+                .show(ui, |ui| code_lines(code, line, palette, ui));
         });
     if !code.note.is_empty() {
-        ui.label(RichText::new(code.note).small().weak());
+        ui.label(RichText::new(code.note).weak());
     }
 }
+
+/// Below this width (points) the counters' headers are shortened so that the brute force
+/// column stays in view.
+const NARROW_COUNTERS: f32 = 330.0;
 
 /// A counter's name, how to read it from [`Counters`], its total and brute force's.
 type CounterRow = (&'static str, fn(&Counters) -> u64, u64, u64);
 
 /// The listing, one unwrapped line per label, the current one marked and scrolled to.
-fn code_lines(code: &crate::pseudocode::Pseudocode, line: Option<usize>, ui: &mut egui::Ui) {
+fn code_lines(
+    code: &crate::pseudocode::Pseudocode,
+    line: Option<usize>,
+    palette: crate::theme::CodePalette,
+    ui: &mut egui::Ui,
+) {
     ui.spacing_mut().item_spacing.y = 0.0;
     for (i, text) in code.lines.iter().enumerate() {
         let current = line == Some(i);
         // The arrow marks the line for screen readers and tests as well as the eye.
         let arrow = if current { '>' } else { ' ' };
-        let mut rich = RichText::new(format!("{:>2}{arrow} {text}", i + 1)).monospace();
+        let mut rich = RichText::new(format!("{:>2}{arrow} {text}", i + 1))
+            .monospace()
+            .color(palette.text);
         if current {
             rich = rich
-                .background_color(Color32::from_rgb(70, 60, 20))
-                .color(Color32::WHITE);
+                .background_color(palette.current_background)
+                .color(palette.current_text);
         }
         let response =
             ui.add(egui::Label::new(rich.size(12.0)).wrap_mode(egui::TextWrapMode::Extend));
@@ -118,11 +137,18 @@ fn counters_table<V: Vector>(
     let total = rec.cost;
     let brute = rec.brute_cost;
     let build = rec.question.task == Task::Build;
+    // A narrow panel (an embedded lab) keeps every column in view with shorter headers.
+    let narrow = ui.available_width() < NARROW_COUNTERS;
     egui::Grid::new(("step counters", index))
         .striped(true)
+        .spacing(egui::vec2(if narrow { 6.0 } else { 10.0 }, 4.0))
         .show(ui, |ui| {
             ui.label("");
-            ui.label("this step");
+            if narrow {
+                ui.label("step").on_hover_text("this step");
+            } else {
+                ui.label("this step");
+            }
             ui.label("so far");
             if !build {
                 ui.label("total");
