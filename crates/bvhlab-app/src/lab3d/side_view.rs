@@ -172,8 +172,8 @@ pub fn side_view(
     let corners = corners(&bounds);
     let mut fitted = corners.to_vec();
     fitted.extend([span.start, span.end]);
-    // Room for the title above and the "e" beside the ray.
-    let inner = rect.shrink2(vec2(14.0, 20.0)).translate(vec2(0.0, 6.0));
+    // Room for the title above.
+    let inner = Rect::from_min_max(rect.min + vec2(12.0, 26.0), rect.max - vec2(12.0, 10.0));
     let proj = Projection::fit(lab, &fitted, inner)?;
 
     painter.rect_filled(rect, 4.0, Color32::from_rgba_unmultiplied(40, 44, 54, 235));
@@ -207,9 +207,15 @@ pub fn side_view(
     if span.from_eye {
         clipped.circle_filled(origin, 3.5, colors::QUERY);
     }
+    // Beside the ray's start, on the side the ray leaves free.
+    let (offset, align) = if end.y > origin.y {
+        (vec2(-2.0, -5.0), Align2::LEFT_BOTTOM)
+    } else {
+        (vec2(-2.0, 5.0), Align2::LEFT_TOP)
+    };
     clipped.text(
-        origin + vec2(0.0, -6.0),
-        Align2::CENTER_BOTTOM,
+        origin + offset,
+        align,
         if span.from_eye { "e" } else { "from e" },
         FontId::proportional(crate::theme::SMALLEST_TEXT),
         colors::QUERY,
