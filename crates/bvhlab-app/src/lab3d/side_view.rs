@@ -172,8 +172,8 @@ pub fn side_view(
     let corners = corners(&bounds);
     let mut fitted = corners.to_vec();
     fitted.extend([span.start, span.end]);
-    // Room for the title above.
-    let inner = Rect::from_min_max(rect.min + vec2(12.0, 26.0), rect.max - vec2(12.0, 10.0));
+    // Room for the title above, and for the label of the ray's start under it.
+    let inner = Rect::from_min_max(rect.min + vec2(12.0, 40.0), rect.max - vec2(12.0, 10.0));
     let proj = Projection::fit(lab, &fitted, inner)?;
 
     painter.rect_filled(rect, 4.0, Color32::from_rgba_unmultiplied(40, 44, 54, 235));
