@@ -20,6 +20,8 @@ pub struct LabApp {
     pub ui: UiState,
     /// What the lab last reported to the page.
     pub report: Report,
+    /// Whether the lab's text sizes and colours are in egui's styles ([`crate::theme`]).
+    styled: bool,
 }
 
 impl Default for LabApp {
@@ -35,6 +37,7 @@ impl LabApp {
             lab,
             ui: UiState::new(),
             report: Report::default(),
+            styled: false,
         }
     }
 
@@ -99,6 +102,12 @@ impl LabApp {
     /// The lab's whole UI, inside `ui` (the native window, the web canvas, or a test
     /// harness).
     pub fn show(&mut self, ui: &mut egui::Ui) {
+        if !self.styled {
+            crate::theme::install(ui.ctx());
+            self.styled = true;
+            // This frame was laid out with the old style.
+            ui.ctx().request_repaint();
+        }
         let dt = ui.input(|i| f64::from(i.stable_dt));
         self.ui.linked = self.ui.hovered.take();
         // The bounding volumes table says again this frame which row is hovered.

@@ -38,6 +38,7 @@ pub mod persist;
 pub mod pseudocode;
 pub mod render3d;
 pub mod report;
+pub mod theme;
 pub mod tree_diagram;
 pub mod ui_state;
 #[cfg(target_arch = "wasm32")]

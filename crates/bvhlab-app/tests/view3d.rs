@@ -16,7 +16,7 @@ use bvhlab_app::model::structures::StructureKind;
 use bvhlab_app::model::{Action3d, HalfAction};
 use bvhlab_app::pseudocode::{Task, line_of};
 use bvhlab_app::report::HeatReport;
-use common::{act, click, click_at, count, lab, press, settle};
+use common::{act, click, click_at, count, lab, painted, press, settle};
 use egui::Key;
 use egui_kittest::Harness;
 
@@ -115,6 +115,48 @@ fn a_click_on_the_bunny_casts_the_camera_ray_and_the_hit_is_brute_forces() {
             .cost
             .is_some_and(|c| c[2] < three.brute_force_tests.unwrap_or(0))
     );
+}
+
+#[test]
+fn a_clicked_ray_is_a_dot_in_the_view_and_a_line_in_the_side_view() {
+    let mut h = lab_3d();
+    act(&mut h, Action3d::SetRay(None));
+    assert!(h.state().ui.view3d.side.is_none(), "no ray, no inset");
+    // The hint under "A click:" is readable.
+    let hint = painted(&h)
+        .into_iter()
+        .find(|t| t.text.starts_with("Drag to orbit"))
+        .expect("the 3D view's hint");
+    assert!(hint.size >= 11.0, "the hint is {} points", hint.size);
+    click_view_middle(&mut h);
+    let lab = three(&h);
+    let ray = lab.ray.expect("the click cast a ray");
+    let rect = view_rect(&h);
+    let size = Vec2::new(rect.width(), rect.height());
+    let t = h
+        .state()
+        .report
+        .three
+        .as_ref()
+        .and_then(|r| r.hit.as_ref())
+        .expect("a hit on the bunny")
+        .t;
+    // In the view the ray runs straight into the screen: halfway and its hit are one pixel.
+    let seen = |t: f32| lab.camera.project(ray.at(t), size).expect("in front");
+    assert!(seen(0.5 * t).distance(seen(t)) < 1.0);
+    let side = h.state().ui.view3d.side.expect("the side view is drawn");
+    assert!(rect.contains_rect(side.rect), "{:?} in {rect:?}", side.rect);
+    for end in [side.origin, side.end] {
+        assert!(side.rect.contains(end), "{end:?} in {:?}", side.rect);
+    }
+    let long = side.origin.distance(side.end);
+    assert!(long >= 60.0, "the ray is {long} points long in the inset");
+    if let Some(hit) = side.hit {
+        assert!(hit.distance(side.end) < 0.5, "the ray ends at its hit");
+    }
+    // Casting the point (no ray question) takes the inset away.
+    act(&mut h, HalfAction::SetTask(Task::Nearest));
+    assert!(h.state().ui.view3d.side.is_none());
 }
 
 #[test]

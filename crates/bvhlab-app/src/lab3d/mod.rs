@@ -7,13 +7,15 @@
 //!
 //! Mirrors [`crate::lab2d`]: `mod.rs` the widget, `input.rs` the pointer, `draw.rs` what is
 //! drawn (the playback's state included); and `nodes.rs` (a structure's nodes at any size),
-//! `wire.rs` (shapes as segments), `heat.rs` (the heat map).
+//! `wire.rs` (shapes as segments), `heat.rs` (the heat map), `side_view.rs` (the ray seen
+//! from the side, in an inset).
 
 pub mod draw;
 pub mod heat;
 pub mod input;
 pub mod nodes;
 pub mod picture;
+pub mod side_view;
 pub mod wire;
 
 use std::sync::Arc;
@@ -43,6 +45,8 @@ pub struct ViewState {
     /// What each half of the view drew in the last frame (one list, or two when
     /// comparing).
     pub drawn: Vec<Draw3d>,
+    /// The side view's inset as last drawn (when a ray is asked about).
+    pub side: Option<side_view::SideView>,
     /// The mesh's triangles in the GPU's layout, made once per mesh (shared with the paint
     /// callback).
     mesh_gpu: Option<Arc<MeshData>>,
@@ -55,6 +59,7 @@ impl Default for ViewState {
             rect: egui::Rect::NOTHING,
             heat: heat::HeatMap::default(),
             drawn: Vec::new(),
+            side: None,
             mesh_gpu: None,
         }
     }
@@ -172,6 +177,8 @@ pub fn view(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
             egui::Stroke::new(2.0, Color32::from_gray(70)),
         );
     }
+    // A clicked ray runs straight into the screen: the inset shows it from the side.
+    cx.ui.view3d.side = side_view::side_view(lab, lab.half.lane_at(0), halves[0], &painter);
     crate::paint::legend(&painter, rect, "tested triangle");
 }
 

@@ -45,7 +45,6 @@ fn query_section(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
     });
     ui.label(
         RichText::new("Drag to orbit, shift-drag to pan, scroll to zoom. Drag the gizmo's dots to move the ray or point; its coloured arrows move it along x, y or z.")
-            .small()
             .weak(),
     );
     if let Some(ray) = lab.ray {

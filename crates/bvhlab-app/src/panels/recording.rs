@@ -3,7 +3,7 @@
 //! brute force's), the nodes waiting, the best answer so far, and a build's split.
 
 use bvhlab::Vector;
-use egui::{Color32, RichText};
+use egui::RichText;
 
 use super::step_through::variant_label;
 use crate::model::recording::Recording;
@@ -44,12 +44,14 @@ pub fn recording_state<V: Vector>(
         ),
         None => format!("step 0 of {}: nothing done yet", rec.events.len()),
     });
-    if let Some(code) = crate::pseudocode::pseudocode(kind, q.task, q.variant) {
-        pseudocode_view(code, line, index, ui);
-    }
+    // The counters come before the listing, so that a short panel (an embedded lab) shows
+    // them with the sentence.
     // A build tests nothing: its counters would all be zero.
     if q.task != Task::Build {
         counters_table(rec, snap, kind, index, ui);
+    }
+    if let Some(code) = crate::pseudocode::pseudocode(kind, q.task, q.variant) {
+        pseudocode_view(code, line, index, ui);
     }
     if rec.variant_costs.len() > 1 {
         for (v, c) in &rec.variant_costs {
@@ -77,38 +79,62 @@ fn pseudocode_view(
     ui: &mut egui::Ui,
 ) {
     ui.label(RichText::new(code.title).strong());
+    // All of the listing in a tall panel; in a short one, part of it (scrolled to the
+    // current line) so that the rest of the panel stays in reach.
+    let max_height = (ui.clip_rect().height() * 0.45).max(90.0);
+    let palette = crate::theme::code_palette(ui.ctx().theme());
     egui::Frame::new()
-        .fill(Color32::from_rgb(20, 22, 28))
+        .fill(palette.background)
         .inner_margin(6.0)
         .show(ui, |ui| {
-            egui::ScrollArea::horizontal()
+            egui::ScrollArea::both()
                 .id_salt(("code", index))
-                .show(ui, |ui| code_lines(code, line, ui));
+                .max_height(max_height)
+                .auto_shrink([false, true])
+                // Jumps to the current line: playing at 200 steps a second, an animated
+                // scroll would never catch up.
+                .animated(false)
+                .show(ui, |ui| code_lines(code, line, palette, ui));
         });
     if !code.note.is_empty() {
-        ui.label(RichText::new(code.note).small().weak());
+        ui.label(RichText::new(code.note).weak());
     }
 }
+
+/// Below this width (points) the counters' headers are shortened so that the brute force
+/// column stays in view.
+const NARROW_COUNTERS: f32 = 330.0;
 
 /// A counter's name, how to read it from [`Counters`], its total and brute force's.
 type CounterRow = (&'static str, fn(&Counters) -> u64, u64, u64);
 
 /// The listing, one unwrapped line per label, the current one marked and scrolled to.
-fn code_lines(code: &crate::pseudocode::Pseudocode, line: Option<usize>, ui: &mut egui::Ui) {
+fn code_lines(
+    code: &crate::pseudocode::Pseudocode,
+    line: Option<usize>,
+    palette: crate::theme::CodePalette,
+    ui: &mut egui::Ui,
+) {
     ui.spacing_mut().item_spacing.y = 0.0;
     for (i, text) in code.lines.iter().enumerate() {
         let current = line == Some(i);
         // The arrow marks the line for screen readers and tests as well as the eye.
         let arrow = if current { '>' } else { ' ' };
-        let mut rich = RichText::new(format!("{:>2}{arrow} {text}", i + 1)).monospace();
+        let mut rich = RichText::new(format!("{:>2}{arrow} {text}", i + 1))
+            .monospace()
+            .color(palette.text);
         if current {
             rich = rich
-                .background_color(Color32::from_rgb(70, 60, 20))
-                .color(Color32::WHITE);
+                .background_color(palette.current_background)
+                .color(palette.current_text);
         }
         let response =
             ui.add(egui::Label::new(rich.size(12.0)).wrap_mode(egui::TextWrapMode::Extend));
-        if current {
+        // Scrolled to only while out of view: scrolling every frame kept the listing
+        // animating (and the page repainting) after the line was already shown.
+        let clip = ui.clip_rect();
+        let in_view = clip.top() <= response.rect.top() && response.rect.bottom() <= clip.bottom();
+        if current && !in_view {
             response.scroll_to_me(None);
         }
     }
@@ -124,11 +150,18 @@ fn counters_table<V: Vector>(
     let total = rec.cost;
     let brute = rec.brute_cost;
     let build = rec.question.task == Task::Build;
+    // A narrow panel (an embedded lab) keeps every column in view with shorter headers.
+    let narrow = ui.available_width() < NARROW_COUNTERS;
     egui::Grid::new(("step counters", index))
         .striped(true)
+        .spacing(egui::vec2(if narrow { 6.0 } else { 10.0 }, 4.0))
         .show(ui, |ui| {
             ui.label("");
-            ui.label("this step");
+            if narrow {
+                ui.label("step").on_hover_text("this step");
+            } else {
+                ui.label("this step");
+            }
             ui.label("so far");
             if !build {
                 ui.label("total");

@@ -2,23 +2,26 @@
 //! two groups, and for a binned-SAH BVH the cost of every candidate plane as a plot with the
 //! cheapest marked (`MacDonald` and Booth 1990; Wald 2007).
 
-use egui_plot::{HLine, Line, Plot, PlotPoints, Points, VLine};
+use std::ops::RangeInclusive;
+
+use egui_plot::{AxisHints, GridInput, GridMark, HLine, Line, Plot, PlotPoints, Points, VLine};
 
 use bvhlab::Vector;
 use bvhlab::structure::SplitMethod;
+use bvhlab::structure::bvh::SplitRecord;
 
 use crate::model::recording::Recording;
 use crate::model::snapshot::Snapshot;
 use crate::model::structures::StructureKind;
 use crate::paint::colors;
 
-/// The current node's split and, where the builder logged one, its SAH cost curve, for
-/// lane `lane` (each lane's plot keeps its own zoom: two lanes step the same node ids).
+/// The current node's split and, where the builder logged one, its SAH cost curve (the plot
+/// is lane `index`'s, one for every node).
 pub fn split_view<V: Vector>(
     rec: &Recording<V>,
     kind: StructureKind,
     snap: &Snapshot<V>,
-    lane: usize,
+    index: usize,
     ui: &mut egui::Ui,
 ) {
     let Some(node) = snap.current else {
@@ -80,6 +83,12 @@ pub fn split_view<V: Vector>(
             ""
         }
     ));
+    cost_plot(record, axis, index, ui);
+}
+
+/// The SAH cost of each candidate plane of `record`'s node along `axis`, the leaf cost, and
+/// the cheapest plane, as lane `index`'s plot.
+fn cost_plot(record: &SplitRecord, axis: &str, index: usize, ui: &mut egui::Ui) {
     let curve: Vec<[f64; 2]> = record
         .planes
         .iter()
@@ -93,16 +102,50 @@ pub fn split_view<V: Vector>(
             f64::from(*record.bin_costs.get(i)?),
         ])
     });
-    Plot::new(("sah curve", lane, node.0))
-        .height(150.0)
+    let leaf = f64::from(record.leaf_cost);
+    let top = curve.iter().map(|p| p[1]).fold(leaf, f64::max);
+    // Room for the widest cost label and the axis name beside it from the first frame (the
+    // plot otherwise learns its axis width a frame late, and a new node's first frame drew
+    // "cost" over the numbers).
+    let body = egui::TextStyle::Body.resolve(ui.style());
+    let widest = ui.fonts_mut(|f| {
+        f.layout_no_wrap(
+            format!("{:.0}", top * 1.2),
+            body.clone(),
+            egui::Color32::WHITE,
+        )
+        .size()
+    });
+    let y_axis_width = widest.x + 8.0 + widest.y * 1.25 + 4.0;
+    Plot::new(("sah curve", index))
+        .height(170.0)
         .allow_scroll(false)
         .allow_drag(false)
-        .x_axis_label(format!("plane position ({axis})"))
-        .y_axis_label("cost")
+        .allow_zoom(false)
+        .allow_boxed_zoom(false)
+        .include_y(0.0)
+        // Room inside the frame for the outermost points and their tick labels.
+        .set_margin_fraction(egui::vec2(0.08, 0.12))
+        // About five round ticks on each axis, every one labelled at full strength.
+        .x_grid_spacer(round_ticks)
+        .y_grid_spacer(round_ticks)
+        .custom_x_axes(vec![
+            AxisHints::new_x()
+                .label(format!("plane position ({axis})"))
+                .formatter(tick_label)
+                .label_spacing(30.0..=40.0),
+        ])
+        .custom_y_axes(vec![
+            AxisHints::new_y()
+                .label("SAH cost")
+                .formatter(tick_label)
+                .min_thickness(y_axis_width)
+                .label_spacing(16.0..=20.0),
+        ])
         .show(ui, |plot| {
             plot.line(Line::new("cost", PlotPoints::from(curve.clone())).color(colors::QUERY));
             plot.points(Points::new("planes", PlotPoints::from(curve)).radius(2.0));
-            plot.hline(HLine::new("leaf cost", f64::from(record.leaf_cost)).color(colors::PRUNED));
+            plot.hline(HLine::new("leaf cost", leaf).color(colors::PRUNED));
             if let Some(best) = chosen {
                 plot.vline(VLine::new("chosen", best[0]).color(colors::ANSWER));
                 plot.points(
@@ -120,5 +163,48 @@ fn method_name(method: SplitMethod) -> &'static str {
         SplitMethod::SpatialMedian => "Spatial median (the middle of the longest axis)",
         SplitMethod::ObjectMedian => "Object median (half the primitives on each side)",
         SplitMethod::BinnedSah => "SAH (binned)",
+    }
+}
+
+/// About five ticks across the shown range, 1, 2 or 5 times a power of ten apart.
+#[expect(
+    clippy::needless_pass_by_value,
+    reason = "egui_plot's grid spacers take their input by value"
+)]
+fn round_ticks(input: GridInput) -> Vec<GridMark> {
+    let (lo, hi) = input.bounds;
+    let span = hi - lo;
+    if !(span.is_finite() && span > 0.0) {
+        return Vec::new();
+    }
+    let rough = span / 5.0;
+    let power = 10f64.powf(rough.log10().floor());
+    let step = [1.0, 2.0, 5.0, 10.0]
+        .iter()
+        .map(|m| m * power)
+        .find(|s| *s >= rough)
+        .unwrap_or(10.0 * power);
+    let (first, last) = ((lo / step).ceil() as i64, (hi / step).floor() as i64);
+    (first..=last)
+        .map(|i| GridMark {
+            value: i as f64 * step,
+            step_size: step,
+        })
+        .collect()
+}
+
+/// A tick's label: as many decimals as the ticks' spacing needs, none for whole numbers,
+/// and no "-0".
+fn tick_label(mark: GridMark, _range: &RangeInclusive<f64>) -> String {
+    let decimals = (-mark.step_size.log10()).ceil().clamp(0.0, 6.0) as usize;
+    let text = format!("{:.*}", decimals, mark.value);
+    if text
+        .trim_start_matches('-')
+        .chars()
+        .all(|c| c == '0' || c == '.')
+    {
+        "0".to_owned()
+    } else {
+        text
     }
 }

@@ -72,8 +72,6 @@ where
     ui.separator();
     transport(cx, half, ui);
     ui.separator();
-    super::export::export_buttons(cx, ui);
-    ui.separator();
     for (i, lane) in half.lanes().enumerate() {
         if half.lane_count() > 1 {
             ui.label(
@@ -91,6 +89,8 @@ where
         );
         ui.separator();
     }
+    // Last: a short panel (an embedded lab) shows the step and its counters first.
+    super::export::export_buttons(cx, ui);
 }
 
 /// Chooses what playback steps through, and the algorithm's variant.
@@ -149,7 +149,7 @@ fn task_picker<P: LabPrimitive>(cx: &mut Cx<'_>, half: &Half<P>, ui: &mut egui::
 /// build options) to compare with.
 fn compare_picker<P: LabPrimitive>(cx: &mut Cx<'_>, half: &Half<P>, ui: &mut egui::Ui) {
     let dim = dim_of::<P>();
-    ui.horizontal(|ui| {
+    ui.horizontal_wrapped(|ui| {
         let panels = &mut cx.ui.panels;
         let shown = match P::DIMENSION {
             Dimension::Two => &mut panels.tree,
@@ -160,11 +160,10 @@ fn compare_picker<P: LabPrimitive>(cx: &mut Cx<'_>, half: &Half<P>, ui: &mut egu
             .on_hover_text("hovering the view highlights the node under the pointer, and its place in the tree");
     });
     let mut on = half.compare.is_some();
-    if ui
+    let compare = ui
         .checkbox(&mut on, "compare with")
-        .on_hover_text("a second structure, or the same one with other build options, side by side on the same question")
-        .changed()
-    {
+        .on_hover_text("a second structure, or the same one with other build options, side by side on the same question");
+    if compare.changed() {
         cx.act(HalfAction::SetCompare(on.then(|| {
             let mut settings = half.lane.settings;
             settings.kind = if settings.kind == StructureKind::SphereTree {

@@ -6,7 +6,8 @@ use bvhlab::Ray2;
 use bvhlab::glam::Vec2;
 use bvhlab_app::LabApp;
 use egui::accesskit::Role;
-use egui::{Event, Key, Modifiers, PointerButton, Pos2, vec2};
+use egui::epaint::Shape;
+use egui::{Color32, Event, Key, Modifiers, PointerButton, Pos2, Rect, pos2, vec2};
 use egui_kittest::Harness;
 use egui_kittest::kittest::{NodeT, Queryable};
 
@@ -189,4 +190,88 @@ pub fn drop_file(h: &mut Harness<'_, LabApp>, path: &std::path::Path) {
     h.input_mut()
         .dropped_files
         .push(std::sync::Arc::new(DroppedFile(path.to_path_buf())));
+}
+
+/// A text egui painted in the last frame.
+#[derive(Clone, Debug)]
+pub struct Painted {
+    pub text: String,
+    /// Its smallest font size, in points.
+    pub size: f32,
+    /// Its (first section's) colour.
+    pub color: Color32,
+    /// The background its format paints behind it (transparent when none).
+    pub background: Color32,
+    /// Where it is on screen (turned when the text is).
+    pub rect: Rect,
+    /// What it is clipped to.
+    pub clip: Rect,
+    /// The opaque filled rectangle painted last before it under its middle (its panel, its
+    /// frame, a grid stripe).
+    pub under: Option<Color32>,
+}
+
+/// Every text painted in the last frame, in painting order.
+pub fn painted(h: &Harness<'_, LabApp>) -> Vec<Painted> {
+    let mut fills: Vec<(Rect, Color32)> = Vec::new();
+    let mut out = Vec::new();
+    for clipped in &h.output().shapes {
+        walk(&clipped.shape, clipped.clip_rect, &mut fills, &mut out);
+    }
+    out
+}
+
+fn walk(shape: &Shape, clip: Rect, fills: &mut Vec<(Rect, Color32)>, out: &mut Vec<Painted>) {
+    match shape {
+        Shape::Vec(shapes) => {
+            for s in shapes {
+                walk(s, clip, fills, out);
+            }
+        }
+        Shape::Rect(r) if r.fill.a() == 255 => fills.push((r.rect.intersect(clip), r.fill)),
+        Shape::Text(t) => {
+            let job = &t.galley.job;
+            let Some(first) = job.sections.first() else {
+                return;
+            };
+            let size = job
+                .sections
+                .iter()
+                .map(|s| s.format.font_id.size)
+                .fold(f32::INFINITY, f32::min);
+            let color =
+                t.override_text_color
+                    .unwrap_or(if first.format.color == Color32::PLACEHOLDER {
+                        t.fallback_color
+                    } else {
+                        first.format.color
+                    });
+            let r = t.galley.rect;
+            let rect = if t.angle == 0.0 {
+                r.translate(t.pos.to_vec2())
+            } else {
+                // Turned a quarter (the plot's y axis name): x from pos across its height,
+                // y upwards by its width.
+                Rect::from_min_max(
+                    pos2(t.pos.x, t.pos.y - r.width()),
+                    pos2(t.pos.x + r.height(), t.pos.y),
+                )
+            };
+            let under = fills
+                .iter()
+                .rev()
+                .find(|(f, _)| f.contains(rect.center()))
+                .map(|(_, c)| *c);
+            out.push(Painted {
+                text: job.text.clone(),
+                size,
+                color,
+                background: first.format.background,
+                rect,
+                clip,
+                under,
+            });
+        }
+        _ => {}
+    }
 }

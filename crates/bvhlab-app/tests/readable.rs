@@ -1,0 +1,242 @@
+//! Issue 21's reading and small-screen items, checked on what egui paints: every text at
+//! least 11 points, the pseudocode's lines (and the notes under it) at WCAG AA contrast in
+//! both themes, the SAH plot's axis name clear of its numbers from a node's first frame, and
+//! the "Step through" panel usable at 800x500 (a lab embedded in a course page).
+
+mod common;
+
+use bvhlab::glam::Vec2;
+use bvhlab::structure::SplitMethod;
+use bvhlab_app::LabApp;
+use bvhlab_app::model::lab2d::RayHandles;
+use bvhlab_app::model::{Action2d, HalfAction, PlaybackAction};
+use bvhlab_app::pseudocode::Task;
+use bvhlab_app::theme::{AA_CONTRAST, contrast};
+use common::{Painted, act, lab, painted, settle};
+use egui::accesskit::Role;
+use egui::{Rect, Theme, pos2, vec2};
+use egui_kittest::Harness;
+use egui_kittest::kittest::{NodeT, Queryable};
+
+/// The lab with the default ray across the default scene, stepped to step 4.
+fn stepped(size: egui::Vec2) -> Harness<'static, LabApp> {
+    let mut h = Harness::builder()
+        .with_size(size)
+        .build_ui_state(|ui, app: &mut LabApp| app.show(ui), LabApp::default());
+    h.run();
+    act(
+        &mut h,
+        Action2d::SetRay(Some(RayHandles {
+            origin: Vec2::new(0.5, 9.7),
+            target: Vec2::new(20.0, 11.3),
+        })),
+    );
+    act(&mut h, PlaybackAction::GoTo(4));
+    h
+}
+
+/// Whether `text` is a line of the pseudocode listing ("12  ..." or "12> ...").
+fn is_code_line(text: &str) -> bool {
+    let b = text.as_bytes();
+    b.len() > 4
+        && b[..2].iter().all(|c| c.is_ascii_digit() || *c == b' ')
+        && b[1].is_ascii_digit()
+        && (b[2] == b' ' || b[2] == b'>')
+        && b[3] == b' '
+}
+
+#[test]
+fn every_text_is_11_points_or_more_and_the_listing_is_aa_in_both_themes() {
+    let mut h = stepped(common::WINDOW);
+    for theme in [Theme::Dark, Theme::Light] {
+        h.ctx.set_theme(theme);
+        settle(&mut h);
+        let texts = painted(&h);
+        let small: Vec<(&str, f32)> = texts
+            .iter()
+            .filter(|t| t.size < 11.0 && !t.text.trim().is_empty())
+            .map(|t| (t.text.as_str(), t.size))
+            .collect();
+        assert!(
+            small.is_empty(),
+            "{theme:?}: text under 11 points: {small:?}"
+        );
+
+        let code: Vec<&Painted> = texts.iter().filter(|t| is_code_line(&t.text)).collect();
+        assert!(
+            code.len() >= 10,
+            "{theme:?}: the listing is shown: {code:#?}"
+        );
+        assert!(
+            code.iter().any(|t| t.text.as_bytes()[2] == b'>'),
+            "{theme:?}: a current line"
+        );
+        for line in &code {
+            let behind = if line.background.a() > 0 {
+                line.background
+            } else {
+                line.under.expect("the listing's frame is under its lines")
+            };
+            let ratio = contrast(line.color, behind);
+            assert!(
+                ratio >= AA_CONTRAST,
+                "{theme:?}: {:?} is {:?} on {behind:?}: {ratio:.2}:1",
+                line.text,
+                line.color
+            );
+        }
+        // The note under the listing (the slides' version, explained).
+        let note = texts
+            .iter()
+            .find(|t| t.text.starts_with("The slides' intersect"))
+            .expect("the note under the listing");
+        let behind = note.under.expect("the panel is under the note");
+        let ratio = contrast(note.color, behind);
+        assert!(
+            ratio >= AA_CONTRAST && note.size >= 11.0,
+            "{theme:?}: the note is {:.0} points at {ratio:.2}:1",
+            note.size
+        );
+    }
+}
+
+/// The screen rect of the one label reading exactly `text` in the right half of the window
+/// (the "Step through" panel; the controls have counters of their own).
+fn label_rect(h: &Harness<'_, LabApp>, text: &str, middle: f32) -> Rect {
+    let found: Vec<Rect> = h
+        .query_all_by_role(Role::Label)
+        .filter(|n| n.accesskit_node().value().as_deref() == Some(text))
+        .map(|n| n.rect())
+        .filter(|r| r.min.x > middle)
+        .collect();
+    assert_eq!(found.len(), 1, "one label {text:?} in the panel: {found:?}");
+    found[0]
+}
+
+#[test]
+fn at_800_by_500_the_step_its_counters_and_the_brute_force_column_are_in_view_together() {
+    let h = stepped(vec2(800.0, 500.0));
+    // The panel's view ends where the status line (with its "Controls" switch) starts.
+    let status = h.get_by_label("Controls").rect();
+    let visible = Rect::from_min_max(pos2(0.0, 0.0), pos2(800.0, status.min.y));
+    let step = h
+        .query_all_by_role(Role::Label)
+        .find(|n| {
+            n.accesskit_node()
+                .value()
+                .is_some_and(|v| v.starts_with("step 4: "))
+        })
+        .expect("the step's sentence")
+        .rect();
+    let brute = label_rect(&h, "brute force", 400.0);
+    let last_row = label_rect(&h, "primitive tests", 400.0);
+    for (what, r) in [
+        ("the step", step),
+        ("brute force", brute),
+        ("the last counter", last_row),
+    ] {
+        assert!(
+            visible.contains_rect(r),
+            "{what} at {r:?} is outside the panel's view {visible:?}"
+        );
+    }
+    // The counters' numbers are in view too: the brute force column's 200 primitive tests.
+    let texts = painted(&h);
+    let count = texts
+        .iter()
+        .find(|t| t.text == "200" && (t.rect.center().y - last_row.center().y).abs() < 4.0)
+        .expect("brute force's count of primitive tests");
+    assert!(
+        count.clip.contains_rect(count.rect) && visible.contains_rect(count.rect),
+        "brute force's 200 at {:?} is cut by {:?}",
+        count.rect,
+        count.clip
+    );
+}
+
+/// The first step at or after `from` whose current node has an SAH cost curve, other than
+/// `not`'s node.
+fn curve_step(h: &mut Harness<'_, LabApp>, from: usize, not: Option<u32>) -> (usize, u32) {
+    let steps = h.state().lab().two().half.steps();
+    for s in from..=steps {
+        h.state_mut()
+            .apply(PlaybackAction::GoTo(s))
+            .expect("a step");
+        let half = &h.state().lab().two().half;
+        let rec = half.lane.recorded().expect("recorded");
+        let Some(node) = half.lane.snapshot.as_ref().and_then(|snap| snap.current) else {
+            continue;
+        };
+        let curve = rec
+            .splits
+            .iter()
+            .any(|r| r.node == node && r.bin_costs.len() > 1);
+        if curve && Some(node.0) != not {
+            return (s, node.0);
+        }
+    }
+    panic!("no node with a cost curve after step {from}");
+}
+
+#[test]
+fn the_sah_plots_axis_names_clear_its_numbers_from_a_nodes_first_frame() {
+    let mut h = lab();
+    let mut settings = h.state().lab().two().half.lane.settings;
+    settings.bvh_split = SplitMethod::BinnedSah;
+    act(&mut h, HalfAction::SetStructure(settings));
+    act(&mut h, HalfAction::SetTask(Task::Build));
+    let (first, node) = curve_step(&mut h, 1, None);
+    settle(&mut h);
+    // Another node: one frame only, as a browser draws after a click on ">".
+    let (second, _) = curve_step(&mut h, first + 1, Some(node));
+    assert!(second > first);
+    h.step();
+    let texts = painted(&h);
+    let numbers: Vec<&Painted> = texts
+        .iter()
+        .filter(|t| t.text.trim().parse::<f64>().is_ok())
+        .collect();
+    let names: Vec<&Painted> = texts
+        .iter()
+        .filter(|t| t.text.contains("cost") && t.rect.height() > t.rect.width())
+        .chain(
+            texts
+                .iter()
+                .filter(|t| t.text.starts_with("plane position")),
+        )
+        .collect();
+    assert_eq!(names.len(), 2, "the plot's two axis names: {names:#?}");
+    // The plot lies right of the y axis's name, above the bottom of the x axis's.
+    let (y_name, x_name) = (names[0].rect, names[1].rect);
+    let ticks: Vec<&&Painted> = numbers
+        .iter()
+        .filter(|n| {
+            n.rect.min.x >= y_name.min.x - 1.0
+                && n.rect.max.y <= x_name.max.y + 1.0
+                && n.rect.min.y >= y_name.center().y - 150.0
+        })
+        .collect();
+    assert!(ticks.len() >= 3, "the plot's numbers: {ticks:#?}");
+    for name in &names {
+        for n in &ticks {
+            let both = name.rect.intersect(n.rect);
+            assert!(
+                both.width() <= 0.5 || both.height() <= 0.5,
+                "{:?} at {:?} overlaps {:?} at {:?}",
+                name.text,
+                name.rect,
+                n.text,
+                n.rect
+            );
+        }
+    }
+    for n in &ticks {
+        assert!(
+            n.clip.expand(0.5).contains_rect(n.rect),
+            "{:?} at {:?} is clipped by {:?}",
+            n.text,
+            n.rect,
+            n.clip
+        );
+    }
+}
