@@ -151,15 +151,26 @@ impl LabApp {
     }
 }
 
+/// Below this window width (points) the side panels keep to their share of it.
+pub const NARROW: f32 = 1100.0;
+
 /// The panels around the view, and the view.
 fn layout(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
     let three = cx.lab.dimension() == Dimension::Three;
-    // Narrow windows (an embedded lab) give the panels less, so the view keeps room.
+    // Narrow windows (an embedded lab) give the panels less, so the view keeps room: below
+    // NARROW the panels may not grow past their share (their widest rows scroll or clip),
+    // or an 800 px embed left the view 70 px.
     let width = ui.available_width();
+    let (controls_max, stepper_max) = if width < NARROW {
+        (width * 0.3, width * 0.32)
+    } else {
+        (f32::INFINITY, f32::INFINITY)
+    };
     if cx.ui.panels.controls {
         egui::Panel::left("controls")
             .resizable(true)
             .default_size((width * 0.3).clamp(220.0, 340.0))
+            .max_size(controls_max.max(160.0))
             .show(ui, |ui| {
                 egui::ScrollArea::vertical().show(ui, |ui| crate::panels::controls(cx, ui));
             });
@@ -169,6 +180,7 @@ fn layout(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
         egui::Panel::right("stepper")
             .resizable(true)
             .default_size((width * 0.4).clamp(240.0, 440.0))
+            .max_size(stepper_max.max(160.0))
             .show(ui, |ui| {
                 egui::ScrollArea::vertical()
                     .show(ui, |ui| crate::panels::step_through::step_through(cx, ui));

@@ -105,7 +105,12 @@ fn every_text_is_11_points_or_more_and_the_listing_is_aa_in_both_themes() {
 fn label_rect(h: &Harness<'_, LabApp>, text: &str, middle: f32) -> Rect {
     let found: Vec<Rect> = h
         .query_all_by_role(Role::Label)
-        .filter(|n| n.accesskit_node().value().as_deref() == Some(text))
+        // A narrow panel stacks a header's or a counter's words on two lines.
+        .filter(|n| {
+            n.accesskit_node()
+                .value()
+                .is_some_and(|v| v.replace('\n', " ") == text)
+        })
         .map(|n| n.rect())
         .filter(|r| r.min.x > middle)
         .collect();
@@ -116,6 +121,13 @@ fn label_rect(h: &Harness<'_, LabApp>, text: &str, middle: f32) -> Rect {
 #[test]
 fn at_800_by_500_the_step_its_counters_and_the_brute_force_column_are_in_view_together() {
     let h = stepped(vec2(800.0, 500.0));
+    // The view between the panels keeps a third of the window (it was 70 px wide).
+    let view = h.state().canvas_screen().rect;
+    assert!(
+        view.width() >= 800.0 / 3.0,
+        "the view is {} px wide at 800x500",
+        view.width()
+    );
     // The panel's view ends where the status line (with its "Controls" switch) starts.
     let status = h.get_by_label("Controls").rect();
     let visible = Rect::from_min_max(pos2(0.0, 0.0), pos2(800.0, status.min.y));
@@ -130,6 +142,19 @@ fn at_800_by_500_the_step_its_counters_and_the_brute_force_column_are_in_view_to
         .rect();
     let brute = label_rect(&h, "brute force", 400.0);
     let last_row = label_rect(&h, "primitive tests", 400.0);
+    // Nothing of the panel spills left over the view (a row wider than the panel pushed
+    // its contents out on both sides).
+    for text in painted(&h) {
+        if text.rect.center().x > view.right() && text.rect.center().y < status.min.y {
+            assert!(
+                text.rect.min.x >= view.right() - 1.0,
+                "{:?} at {:?} starts left of the panel (the view ends at {})",
+                text.text,
+                text.rect,
+                view.right()
+            );
+        }
+    }
     for (what, r) in [
         ("the step", step),
         ("brute force", brute),

@@ -163,9 +163,16 @@ fn counters_table<V: Vector>(
                 ui.label("this step");
             }
             ui.label("so far");
-            if !build {
+            // A narrow panel leaves out the total: "so far" reaches it at the last step.
+            if !build && !narrow {
                 ui.label("total");
-                ui.label("brute force");
+            }
+            if !build {
+                ui.label(if narrow {
+                    "brute\nforce"
+                } else {
+                    "brute force"
+                });
             }
             ui.end_row();
             let rows: [CounterRow; 3] = [
@@ -191,7 +198,12 @@ fn counters_table<V: Vector>(
             // A range query reports only the volumes it refuses, not every test.
             let unreported = rec.question.task == Task::Range;
             for (name, get, t, b) in rows {
-                ui.label(name);
+                if narrow {
+                    // Two lines ("primitive" over "tests"): the column is half as wide.
+                    ui.label(name.replacen(' ', "\n", 1));
+                } else {
+                    ui.label(name);
+                }
                 if unreported && name == kind.bound_tests_name() {
                     ui.label("-");
                     ui.label("-");
@@ -199,8 +211,10 @@ fn counters_table<V: Vector>(
                     ui.label(get(&snap.this_step).to_string());
                     ui.label(get(&snap.so_far).to_string());
                 }
-                if !build {
+                if !build && !narrow {
                     ui.label(t.to_string());
+                }
+                if !build {
                     ui.label(b.to_string());
                 }
                 ui.end_row();

@@ -191,6 +191,10 @@ fn compare_picker<P: LabPrimitive>(cx: &mut Cx<'_>, half: &Half<P>, ui: &mut egu
 }
 
 fn transport<P: LabPrimitive>(cx: &mut Cx<'_>, half: &Half<P>, ui: &mut egui::Ui) {
+    // The sliders' rows do not wrap: in a narrow panel (an embedded lab) the sliders give
+    // up width so that their rows, and so the panel, keep inside the window.
+    let beside = 165.0;
+    ui.spacing_mut().slider_width = (ui.available_width() - beside).clamp(50.0, 100.0);
     let len = half.steps();
     let p = &half.playback;
     ui.horizontal(|ui| {
