@@ -290,6 +290,17 @@ pub fn legend_with(
         (colors::ANSWER, "answer"),
     ];
     let mut at = rect.right_top() + egui::vec2(-120.0, 10.0);
+    // A dark backing: the entries stay readable over the scene and its volumes, which
+    // reach into the corner after "Fit view".
+    let rows = entries.len() + more.len();
+    painter.rect_filled(
+        egui::Rect::from_min_size(
+            at - egui::vec2(6.0, 5.0),
+            egui::vec2(122.0, rows as f32 * 16.0 + 4.0),
+        ),
+        4.0,
+        Color32::from_black_alpha(170),
+    );
     for &(color, label) in entries.iter().chain(more) {
         painter.rect_filled(
             egui::Rect::from_min_size(at, egui::vec2(10.0, 10.0)),

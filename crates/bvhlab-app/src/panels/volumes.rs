@@ -82,8 +82,16 @@ fn volumes_section(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
 fn named_swatch(ui: &mut egui::Ui, kind: FitKind, name: &str) -> egui::Response {
     ui.horizontal(|ui| {
         let (rect, _) = ui.allocate_exact_size(vec2(12.0, 12.0), Sense::hover());
-        ui.painter()
-            .rect_filled(rect.shrink(1.0), 2.0, colors::volume(kind));
+        // Outlined in the text's colour: the white of Welzl's sphere vanished on the light
+        // panel without it.
+        let outline = egui::Stroke::new(1.0, ui.visuals().weak_text_color());
+        ui.painter().rect(
+            rect.shrink(1.0),
+            2.0,
+            colors::volume(kind),
+            outline,
+            egui::StrokeKind::Inside,
+        );
         ui.label(name);
     })
     .response

@@ -16,17 +16,23 @@ pub fn describe<V: Vector>(
     task: Task,
     variant: Variant,
 ) -> String {
+    // A grid's nodes are its cells.
+    let unit = if kind == StructureKind::Grid {
+        "cell"
+    } else {
+        "node"
+    };
     match *event {
-        Event::EnterNode { node, depth } => format!("enter node {} (depth {depth})", node.0),
+        Event::EnterNode { node, depth } => format!("enter {unit} {} (depth {depth})", node.0),
         Event::RayBoundTest { node, interval } => match interval {
             Some((a, b)) => format!(
-                "ray meets node {}'s volume for t in [{a:.3}, {b:.3}]",
+                "ray meets {unit} {}'s volume for t in [{a:.3}, {b:.3}]",
                 node.0
             ),
-            None => format!("ray misses node {}'s volume", node.0),
+            None => format!("ray misses {unit} {}'s volume", node.0),
         },
         Event::DistanceBoundTest { node, distance } => {
-            format!("node {}'s volume is {distance:.3} from the point", node.0)
+            format!("{unit} {}'s volume is {distance:.3} from the point", node.0)
         }
         Event::ChildQueued {
             parent,
@@ -50,9 +56,9 @@ pub fn describe<V: Vector>(
             )
         }
         Event::Prune { node, reason, at } => match at {
-            PruneAt::Test => format!("skip node {}: {}", node.0, why(reason)),
-            PruneAt::Pop => format!("pop node {} and skip it: {}", node.0, why(reason)),
-            PruneAt::Stop => format!("stop, skipping node {}: {}", node.0, why(reason)),
+            PruneAt::Test => format!("skip {unit} {}: {}", node.0, why(reason)),
+            PruneAt::Pop => format!("pop {unit} {} and skip it: {}", node.0, why(reason)),
+            PruneAt::Stop => format!("stop, skipping {unit} {}: {}", node.0, why(reason)),
         },
         Event::PrimitiveTest { prim, result } => match result {
             PrimitiveResult::Hit(t) => format!("test primitive {prim}: hit at t = {t:.3}"),

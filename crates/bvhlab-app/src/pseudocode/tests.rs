@@ -319,3 +319,17 @@ fn events_an_algorithm_does_not_emit_have_no_line() {
         None
     );
 }
+
+/// Issue 21: the grid's walk read "stop, skipping node 1"; a grid's nodes are its cells.
+#[test]
+fn a_grid_step_names_cells_and_a_tree_step_names_nodes() {
+    let stop: Event<Vec2> = Event::Prune {
+        node: NodeId(1),
+        reason: PruneReason::RayMissed,
+        at: PruneAt::Stop,
+    };
+    let grid = super::describe(&stop, StructureKind::Grid, Task::FirstHit, Variant::Full);
+    assert!(grid.starts_with("stop, skipping cell 1"), "{grid}");
+    let tree = super::describe(&stop, StructureKind::KdTree, Task::FirstHit, Variant::Full);
+    assert!(tree.starts_with("stop, skipping node 1"), "{tree}");
+}
