@@ -189,7 +189,12 @@ fn layout(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
     if cx.ui.panels.tree_in(cx.lab.dimension()) {
         egui::Panel::bottom("tree")
             .resizable(true)
-            .default_size(crate::panels::tree::DEFAULT_PANEL_HEIGHT)
+            // A short window (an embedded lab) starts it at a third of its height.
+            .default_size(
+                crate::panels::tree::DEFAULT_PANEL_HEIGHT
+                    .min(ui.available_height() * 0.35)
+                    .max(crate::panels::tree::MIN_PANEL_HEIGHT),
+            )
             .min_size(crate::panels::tree::MIN_PANEL_HEIGHT)
             .show(ui, |ui| crate::panels::tree::tree_panel(cx, ui));
     } else {

@@ -128,6 +128,12 @@ fn at_800_by_500_the_step_its_counters_and_the_brute_force_column_are_in_view_to
         "the view is {} px wide at 800x500",
         view.width()
     );
+    // ...and half of its height: the tree diagram below it starts at a third.
+    assert!(
+        view.height() >= 250.0,
+        "the view is {} px tall at 800x500",
+        view.height()
+    );
     // The panel's view ends where the status line (with its "Controls" switch) starts.
     let status = h.get_by_label("Controls").rect();
     let visible = Rect::from_min_max(pos2(0.0, 0.0), pos2(800.0, status.min.y));
