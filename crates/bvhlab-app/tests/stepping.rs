@@ -13,17 +13,6 @@ use egui_kittest::Harness;
 mod common;
 use common::*;
 
-/// The counters' row names, as each structure names them (a grid visits cells; a BVH tests
-/// bounding volumes, a grid or quadtree cells, a k-d or BSP tree cells and planes).
-const COUNTER_NAMES: [&str; 6] = [
-    "nodes visited",
-    "cells visited",
-    "BV tests",
-    "cell tests",
-    "cell and plane tests",
-    "primitive tests",
-];
-
 /// The "Step through" panel's counters: (name, this step, so far, total, brute force).
 fn step_counters(h: &Harness<'_, LabApp>) -> Vec<(String, String, String, String, String)> {
     let all = labels(h);
@@ -374,6 +363,26 @@ fn standing<P: bvhlab_app::model::dimension::LabPrimitive>(
     (p.shown(len), len, p.at_end, p.playing)
 }
 
+/// The answer the live query found, in 2D or 3D: the first primitive hit for a first-hit
+/// task, the nearest primitive otherwise.
+fn live_answer<P: bvhlab_app::model::dimension::LabPrimitive>(
+    half: &bvhlab_app::model::half::Half<P>,
+) -> Option<u32> {
+    let lane = &half.lane;
+    match half.task {
+        Task::FirstHit => lane
+            .ray_outcome
+            .as_ref()
+            .and_then(|o| o.hit)
+            .map(|hit| hit.prim as u32),
+        _ => lane
+            .point_outcome
+            .as_ref()
+            .and_then(|o| o.nearest.first())
+            .map(|n| n.prim as u32),
+    }
+}
+
 /// Asserts that playback stands at the end of a real recording, live and still, and that the
 /// snapshot shown holds the answer the lab gives (`answer`: the first primitive hit or
 /// nearest, as the live query found it).
@@ -428,21 +437,6 @@ fn new_questions_in_2d() {
         },
     ];
     let points = [mid + Vec2::new(0.4, 0.3), lo + (hi - lo) * 0.3];
-    let answer_2d = |h: &Harness<'_, LabApp>| {
-        let lane = &h.state().lab().two().half.lane;
-        match h.state().lab().two().half.task {
-            Task::FirstHit => lane
-                .ray_outcome
-                .as_ref()
-                .and_then(|o| o.hit)
-                .map(|hit| hit.prim as u32),
-            _ => lane
-                .point_outcome
-                .as_ref()
-                .and_then(|o| o.nearest.first())
-                .map(|n| n.prim as u32),
-        }
-    };
     // A recording to step away from.
     act(&mut h, Action2d::SetRay(Some(rays[1])));
     for kind in StructureKind::ALL {
@@ -452,13 +446,21 @@ fn new_questions_in_2d() {
         act(&mut h, PlaybackAction::GoTo(0));
         act(&mut h, HalfAction::SetStructure(settings));
         let what = format!("2D {kind:?}, a new structure");
-        assert_answer_shown(&h.state().lab().two().half, answer_2d(&h), &what);
+        assert_answer_shown(
+            &h.state().lab().two().half,
+            live_answer(&h.state().lab().two().half),
+            &what,
+        );
         for (i, (ray, point)) in rays.iter().zip(points).enumerate() {
             // A ray placed while playback stands at step 0.
             press(&mut h, egui::Key::Home);
             act(&mut h, Action2d::SetRay(Some(*ray)));
             let what = format!("2D {kind:?}, ray {i}");
-            assert_answer_shown(&h.state().lab().two().half, answer_2d(&h), &what);
+            assert_answer_shown(
+                &h.state().lab().two().half,
+                live_answer(&h.state().lab().two().half),
+                &what,
+            );
             assert!(!shows(&h, "nothing done yet"), "{what}");
             // A point placed while playing.
             act(&mut h, PlaybackAction::GoTo(1));
@@ -474,14 +476,22 @@ fn new_questions_in_2d() {
             h.step();
             let what = format!("2D {kind:?}, point {i}");
             assert_eq!(h.state().lab().two().half.task, Task::Nearest, "{what}");
-            assert_answer_shown(&h.state().lab().two().half, answer_2d(&h), &what);
+            assert_answer_shown(
+                &h.state().lab().two().half,
+                live_answer(&h.state().lab().two().half),
+                &what,
+            );
             assert!(!shows(&h, "nothing done yet"), "{what}");
             settle(&mut h);
             // Back to the ray's task from a step in the middle.
             act(&mut h, PlaybackAction::GoTo(2));
             act(&mut h, HalfAction::SetTask(Task::FirstHit));
             let what = format!("2D {kind:?}, task back to the ray {i}");
-            assert_answer_shown(&h.state().lab().two().half, answer_2d(&h), &what);
+            assert_answer_shown(
+                &h.state().lab().two().half,
+                live_answer(&h.state().lab().two().half),
+                &what,
+            );
         }
     }
 }
@@ -527,21 +537,6 @@ fn new_questions_in_3d() {
     // Aimed at a triangle's centroid, so that the ray hits something.
     let t = tris[tris.len() / 2];
     let mid = (t.a + t.b + t.c) / 3.0;
-    let answer_3d = |lab: &Lab| {
-        let lane = &lab.three().half.lane;
-        match lab.three().half.task {
-            Task::FirstHit => lane
-                .ray_outcome
-                .as_ref()
-                .and_then(|o| o.hit)
-                .map(|hit| hit.prim as u32),
-            _ => lane
-                .point_outcome
-                .as_ref()
-                .and_then(|o| o.nearest.first())
-                .map(|n| n.prim as u32),
-        }
-    };
     let ray = bvhlab::Ray3::new(
         mid - 2.0 * size * Vec3::new(1.0, 0.13, 0.07),
         Vec3::new(1.0, 0.13, 0.07),
@@ -559,16 +554,19 @@ fn new_questions_in_3d() {
         tick(&mut lab);
         assert_answer_shown(
             &lab.three().half,
-            answer_3d(&lab),
+            live_answer(&lab.three().half),
             &format!("3D {kind:?}, a new structure"),
         );
         lab.apply(PlaybackAction::GoTo(0).into()).expect("goes");
         lab.apply(Action3d::SetRay(Some(ray)).into())
             .expect("a ray");
-        assert!(answer_3d(&lab).is_some(), "3D {kind:?}: the ray hits");
+        assert!(
+            live_answer(&lab.three().half).is_some(),
+            "3D {kind:?}: the ray hits"
+        );
         assert_answer_shown(
             &lab.three().half,
-            answer_3d(&lab),
+            live_answer(&lab.three().half),
             &format!("3D {kind:?}, ray"),
         );
         lab.apply(PlaybackAction::GoTo(1).into()).expect("goes");
@@ -578,7 +576,7 @@ fn new_questions_in_3d() {
             .expect("a point");
         assert_answer_shown(
             &lab.three().half,
-            answer_3d(&lab),
+            live_answer(&lab.three().half),
             &format!("3D {kind:?}, point"),
         );
     }

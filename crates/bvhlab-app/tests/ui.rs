@@ -53,16 +53,7 @@ fn counter_rows(h: &Harness<'_, LabApp>) -> Vec<(String, u64, u64)> {
     }
     let mut rows = Vec::new();
     for (i, l) in all.iter().enumerate() {
-        if [
-            "nodes visited",
-            "cells visited",
-            "BV tests",
-            "cell tests",
-            "cell and plane tests",
-            "primitive tests",
-        ]
-        .contains(&l.as_str())
-        {
+        if COUNTER_NAMES.contains(&l.as_str()) {
             let n = |j: usize| {
                 all[i + j]
                     .parse::<u64>()

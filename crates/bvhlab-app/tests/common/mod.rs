@@ -11,6 +11,17 @@ use egui::{Color32, Event, Key, Modifiers, PointerButton, Pos2, Rect, pos2, vec2
 use egui_kittest::Harness;
 use egui_kittest::kittest::{NodeT, Queryable};
 
+/// The counters' row names, as each structure names them (a grid visits cells; a BVH tests
+/// bounding volumes, a grid or quadtree cells, a k-d or BSP tree cells and planes).
+pub const COUNTER_NAMES: [&str; 6] = [
+    "nodes visited",
+    "cells visited",
+    "BV tests",
+    "cell tests",
+    "cell and plane tests",
+    "primitive tests",
+];
+
 /// A tall window, so that the whole control panel (down to the queries) is on screen.
 pub const WINDOW: egui::Vec2 = vec2(1800.0, 1800.0);
 
