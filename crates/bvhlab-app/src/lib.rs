@@ -29,6 +29,7 @@ pub mod export;
 pub mod frame_clock;
 pub mod lab2d;
 pub mod lab3d;
+pub mod lessons;
 pub mod model;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod native;

@@ -3,18 +3,13 @@
 //! [`PARAMETERS`]; a value the lab cannot use, or a parameter it does not know, is named in
 //! the status line and the rest still applies.
 
-use bvhlab::Ray3;
-use bvhlab::glam::{Vec2, Vec3};
-
-use crate::model::lab2d::RayHandles;
-use crate::model::mesh::MeshSource;
 use crate::model::presets::Preset;
-use crate::model::{Action, Action2d, Action3d, Dimension, HalfAction, Lab, PlaybackAction};
-use crate::persist::{STORAGE_KEY, StructureName, TaskName};
+use crate::model::{Action, Lab, LessonAction, Setup};
+use crate::persist::{STORAGE_KEY, StructureName, TaskName, VariantName};
 pub use crate::ui_state::PanelsShown as Panels;
 
 /// The parameters the lab reads, with what each does (the README's table is this list).
-pub const PARAMETERS: [(&str, &str); 12] = [
+pub const PARAMETERS: [(&str, &str); 14] = [
     (
         "preset",
         "a 2D scene: one of the presets' slugs (kd-tree, quadtree, 10k, ...)",
@@ -39,8 +34,19 @@ pub const PARAMETERS: [(&str, &str); 12] = [
         "ray",
         "the ray: origin and direction, x,y,dx,dy in 2D or x,y,z,dx,dy,dz in 3D",
     ),
+    (
+        "variant",
+        "the algorithm's version: full, lecture (the slide's pseudocode), lecture-pruned",
+    ),
     ("point", "the query point: x,y in 2D or x,y,z in 3D"),
-    ("step", "the playback step to show (0 is the start)"),
+    (
+        "step",
+        "the playback step to show (0 is the start); with lesson, the lesson's step (1 is its first)",
+    ),
+    (
+        "lesson",
+        "opens a lesson at its step (the Lessons panel lists them: queries, bounding-volumes, ...)",
+    ),
     (
         "panels",
         "the panels shown beside the view, comma-separated: controls, stepper, tree (none: panels=)",
@@ -74,6 +80,10 @@ pub struct StartParams {
     pub task: Option<TaskName>,
     /// `ray=`: 4 or 6 numbers.
     pub ray: Option<Vec<f32>>,
+    /// `variant=`.
+    pub variant: Option<VariantName>,
+    /// `lesson=`: a lesson's name.
+    pub lesson: Option<String>,
     /// `point=`: 2 or 3 numbers.
     pub point: Option<Vec<f32>>,
     /// `step=`.
@@ -184,6 +194,13 @@ impl StartParams {
                         .ok_or_else(|| unknown(name, "task", value, TaskName::NAMES))?,
                 );
             }
+            "variant" => {
+                self.variant = Some(
+                    VariantName::from_name(value)
+                        .ok_or_else(|| unknown(name, "variant", value, VariantName::NAMES))?,
+                );
+            }
+            "lesson" => self.lesson = Some(value.to_owned()),
             "ray" => self.ray = Some(numbers("ray", value, &[4, 6])?),
             "point" => self.point = Some(numbers("point", value, &[2, 3])?),
             "step" => {
@@ -241,6 +258,12 @@ impl StartParams {
                 parts.push(format!("{name}={}", text.join(",")));
             }
         }
+        if let Some(v) = self.variant {
+            parts.push(format!("variant={}", stored_name(&v)));
+        }
+        if let Some(lesson) = &self.lesson {
+            parts.push(format!("lesson={lesson}"));
+        }
         if let Some(step) = self.step {
             parts.push(format!("step={step}"));
         }
@@ -251,128 +274,44 @@ impl StartParams {
         }
     }
 
+    /// The starting state the parameters describe.
+    pub fn setup(&self) -> Setup {
+        Setup {
+            preset: self.preset,
+            mesh: self.mesh.clone(),
+            structure: self.structure.map(Into::into),
+            compare: self.compare.map(Into::into),
+            ray: self.ray.clone(),
+            point: self.point.clone(),
+            task: self.task.map(Into::into),
+            variant: self.variant.map(Into::into),
+            // With a lesson, `step=` is the lesson's step.
+            step: if self.lesson.is_some() {
+                None
+            } else {
+                self.step
+            },
+        }
+    }
+
     /// Puts what the parameters ask for into `lab` (a fresh one), and returns what could
-    /// not be used, one sentence each. (The panels are the UI's: the caller shows them.)
+    /// not be used, one sentence each. (The panels are the UI's: the caller shows them.) A
+    /// lesson opens after the rest, at `step=` (1 is its first step).
     pub fn apply(&self, lab: &mut Lab) -> Vec<String> {
-        let mut problems = Vec::new();
-        let apply = |lab: &mut Lab, action: Action, problems: &mut Vec<String>| {
-            if let Err(e) = lab.apply(action) {
-                problems.push(format!("the address: {e}"));
-            }
-        };
-        if let Some(preset) = self.preset {
-            apply(lab, Action2d::LoadPreset(preset).into(), &mut problems);
-        }
-        if let Some(slug) = &self.mesh {
-            apply(
-                lab,
-                Action3d::OpenMesh(MeshSource::Builtin(slug.clone())).into(),
-                &mut problems,
-            );
-        }
-        let three = lab.dimension() == Dimension::Three;
-        if let Some(structure) = self.structure {
-            let mut settings = if three {
-                lab.three().half.lane.settings
-            } else {
-                lab.two().half.lane.settings
-            };
-            settings.kind = structure.into();
-            apply(
-                lab,
-                HalfAction::SetStructure(settings).into(),
-                &mut problems,
-            );
-        }
-        if let Some(structure) = self.compare {
-            let mut settings = if three {
-                lab.three().half.lane.settings
-            } else {
-                lab.two().half.lane.settings
-            };
-            settings.kind = structure.into();
-            apply(
-                lab,
-                HalfAction::SetCompare(Some(settings)).into(),
-                &mut problems,
-            );
-        }
-        if let Some(numbers) = &self.ray {
-            let action = if three {
-                ray3(numbers).map(|r| Action3d::SetRay(Some(r)).into())
-            } else {
-                ray2(numbers).map(|r| Action2d::SetRay(Some(r)).into())
-            };
-            match action {
-                Ok(action) => apply(lab, action, &mut problems),
-                Err(e) => problems.push(e),
-            }
-        }
-        if let Some(numbers) = &self.point {
-            let action = match (three, numbers.as_slice()) {
-                (false, &[x, y]) => Ok(Action2d::SetPoint(Some(Vec2::new(x, y))).into()),
-                (true, &[x, y, z]) => Ok(Action3d::SetPoint(Some(Vec3::new(x, y, z))).into()),
-                _ => Err(format!(
-                    "the address's point has {} numbers; the {} view takes {}",
-                    numbers.len(),
-                    if three { "3D" } else { "2D" },
-                    if three { 3 } else { 2 }
-                )),
-            };
-            match action {
-                // With a ray too, the ray's task stays (the point is placed for later).
-                Ok(action) => {
-                    let task = if three {
-                        lab.three().half.task
-                    } else {
-                        lab.two().half.task
-                    };
-                    apply(lab, action, &mut problems);
-                    if self.ray.is_some() {
-                        apply(lab, HalfAction::SetTask(task).into(), &mut problems);
+        let mut problems = lab.apply_setup(&self.setup(), "the address");
+        if let Some(name) = &self.lesson {
+            let step = self.step.unwrap_or(1).max(1) - 1;
+            match crate::lessons::find(name) {
+                Ok(lesson) => {
+                    if let Err(e) = lab.apply(Action::Lesson(LessonAction::Open { lesson, step })) {
+                        problems.push(format!("the address: {e}"));
                     }
                 }
-                Err(e) => problems.push(e),
+                Err(e) => problems.push(format!("the address's lesson: {e}")),
             }
-        }
-        if let Some(task) = self.task {
-            apply(lab, HalfAction::SetTask(task.into()).into(), &mut problems);
-        }
-        if let Some(step) = self.step {
-            apply(lab, PlaybackAction::Hold(step).into(), &mut problems);
         }
         problems
     }
-}
-
-/// A 2D ray from `x,y,dx,dy`.
-fn ray2(n: &[f32]) -> Result<RayHandles, String> {
-    let &[x, y, dx, dy] = n else {
-        return Err(format!(
-            "the address's ray has {} numbers; the 2D view takes 4 (x,y,dx,dy)",
-            n.len()
-        ));
-    };
-    let handles = RayHandles {
-        origin: Vec2::new(x, y),
-        target: Vec2::new(x + dx, y + dy),
-    };
-    handles
-        .ray()
-        .map(|_| handles)
-        .map_err(|e| format!("the address's ray: {e}"))
-}
-
-/// A 3D ray from `x,y,z,dx,dy,dz`.
-fn ray3(n: &[f32]) -> Result<Ray3, String> {
-    let &[x, y, z, dx, dy, dz] = n else {
-        return Err(format!(
-            "the address's ray has {} numbers; the 3D view takes 6 (x,y,z,dx,dy,dz)",
-            n.len()
-        ));
-    };
-    Ray3::new(Vec3::new(x, y, z), Vec3::new(dx, dy, dz))
-        .map_err(|e| format!("the address's ray: {e}"))
 }
 
 /// What the address's `parameter` says when its `value` names no `kind` the lab has:

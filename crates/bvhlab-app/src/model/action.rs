@@ -34,6 +34,8 @@ pub enum Action {
     Three(Action3d),
     /// A change of the structures, question or playback of the half shown.
     Half(HalfAction),
+    /// Opens or closes a lesson, or moves to one of its steps.
+    Lesson(super::lesson::LessonAction),
     /// Replaces the whole state (a saved state, a scene file, a share link), already
     /// checked.
     Restore(Box<Restore>),
@@ -192,7 +194,11 @@ impl Action {
                     | Action3d::SetPoint(_)
             ),
             Self::Half(a) => !matches!(a, HalfAction::Playback(_)),
-            Self::Show(_) | Self::SetMessage(_) | Self::Restore(_) | Self::Tick { .. } => false,
+            Self::Show(_)
+            | Self::SetMessage(_)
+            | Self::Lesson(_)
+            | Self::Restore(_)
+            | Self::Tick { .. } => false,
         }
     }
 }

@@ -58,6 +58,7 @@ impl Lab {
                 note
             }
             Action::Half(action) => self.apply_half(action)?,
+            Action::Lesson(action) => self.apply_lesson(action)?,
             Action::Restore(state) => {
                 let state = *state;
                 state.two.write(&mut self.two);
@@ -87,6 +88,7 @@ impl Lab {
         }
         self.changes += 1;
         self.refresh();
+        self.check_goal();
         Ok(())
     }
 

@@ -21,6 +21,8 @@
 //!   force's; [`structures`]: one dispatch over the core's structures.
 //! - [`scene`], [`presets`], [`volumes`], [`camera2d`]: the 2D half's data; [`mesh`],
 //!   [`orbit_camera`], [`heat`]: the 3D half's; [`tools`]: what a press does in each.
+//! - [`lesson`]: the lesson open and its goals reached; [`goal`]: a goal read live;
+//!   [`setup`]: a starting state in a few words (the address's and each lesson step's).
 //! - [`action`]: every change; [`restore`]: a whole state, checked; [`history`]: the 2D
 //!   scene's edits, to undo and redo.
 
@@ -29,6 +31,7 @@ mod apply;
 pub mod build_job;
 pub mod camera2d;
 pub mod dimension;
+pub mod goal;
 pub mod half;
 pub mod heat;
 pub mod history;
@@ -36,6 +39,7 @@ pub mod lab2d;
 pub mod lab3d;
 pub mod lane;
 pub mod lane_name;
+pub mod lesson;
 pub mod mesh;
 pub mod orbit_camera;
 pub mod outcome;
@@ -45,6 +49,7 @@ pub mod question;
 pub mod recording;
 pub mod restore;
 pub mod scene;
+pub mod setup;
 pub mod snapshot;
 pub mod structures;
 pub mod tools;
@@ -54,6 +59,8 @@ pub use action::{Action, Action2d, Action3d, HalfAction, PlaybackAction};
 pub use dimension::Dimension;
 pub use lab2d::Lab2d;
 pub use lab3d::Lab3d;
+pub use lesson::{Lesson, LessonAction, LessonProgress, LessonStep};
+pub use setup::Setup;
 
 /// What the status line says after an action.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -73,6 +80,8 @@ pub struct Lab {
     two: Lab2d,
     three: Lab3d,
     message: Option<String>,
+    /// The lesson open, if any ([`lesson`]).
+    lesson: Option<LessonProgress>,
     /// Counts the changes: equal counts mean an unchanged state (the autosave compares it).
     changes: u64,
 }

@@ -3,7 +3,7 @@
 //! ([`Panel`]), one file per panel, and one list per half ([`PANELS_2D`], [`PANELS_3D`]) in
 //! the lecture's order.
 //!
-//! - The controls (left): [`scene`], [`volumes`], [`structure`], [`queries`], [`save_share`]
+//! - The controls (left): [`lesson`] first, then [`scene`], [`volumes`], [`structure`], [`queries`], [`save_share`]
 //!   in 2D; [`mesh`], [`structure`], [`ray_point`], [`heat`], [`save_share`] in 3D.
 //! - "Step through" (right): [`step_through`] (task, comparison, transport, export, and each
 //!   lane's recording at the step: [`recording`], with a build's split in [`split`]).
@@ -12,6 +12,7 @@
 
 pub mod export;
 pub mod heat;
+pub mod lesson;
 pub mod mesh;
 pub mod queries;
 pub mod ray_point;
@@ -60,6 +61,9 @@ pub const PANELS_3D: [&dyn Panel; 5] = [
 pub fn controls(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
     ui.heading("bvh-lab");
     ui.label("Bounding volumes and spatial data structures, after the lecture's slides.");
+    CollapsingHeader::new("Lessons")
+        .default_open(true)
+        .show(ui, |ui| lesson::lessons(cx, ui));
     dimension_switch(cx, ui);
     let panels = match cx.lab.dimension() {
         Dimension::Two => PANELS_2D,

@@ -1,0 +1,129 @@
+//! Reads a lesson file (TOML; the format is in `crates/bvhlab-app/lessons/README.md`) into
+//! a [`Lesson`], or says which line of which file is wrong and why.
+
+use serde::Deserialize;
+use toml::Spanned;
+
+use super::goal_text;
+use crate::embed::params::StartParams;
+use crate::model::{Lesson, LessonStep};
+
+/// A lesson file as written.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct LessonFile {
+    title: String,
+    section: String,
+    #[serde(rename = "step")]
+    steps: Vec<StepFile>,
+}
+
+/// A step as written.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct StepFile {
+    title: String,
+    setup: Spanned<String>,
+    text: String,
+    formula: Option<String>,
+    task: Option<String>,
+    #[serde(default)]
+    goal: Vec<Spanned<String>>,
+    why: Option<String>,
+    solution: Option<Spanned<String>>,
+}
+
+/// The lesson in `text`, read from the file `file` (`03-slab-test.toml`: the lesson's name
+/// is `slab-test`).
+///
+/// # Errors
+/// `file:line: what is wrong`.
+pub fn read(file: &str, text: &str) -> Result<Lesson, String> {
+    let name = lesson_name(file);
+    let parsed: LessonFile = toml::from_str(text).map_err(|e| {
+        let line = e.span().map_or(0, |s| line_of(text, s.start));
+        format!("{file}:{line}: {}", e.message())
+    })?;
+    if parsed.steps.is_empty() {
+        return Err(format!("{file}:1: the lesson has no [[step]]"));
+    }
+    let mut steps = Vec::with_capacity(parsed.steps.len());
+    for step in parsed.steps {
+        let at = |span: std::ops::Range<usize>| format!("{file}:{}", line_of(text, span.start));
+        let params = StartParams::parse(step.setup.get_ref());
+        if let Some(problem) = params.problems.first() {
+            return Err(format!("{}: the setup: {problem}", at(step.setup.span())));
+        }
+        if params.lesson.is_some() || !params.origins.is_empty() || params.lab.is_some() {
+            return Err(format!(
+                "{}: the setup says where the lab starts: lesson, lab and origin belong to a page",
+                at(step.setup.span())
+            ));
+        }
+        let goals = step
+            .goal
+            .iter()
+            .map(|g| goal_text::parse(g.get_ref()).map_err(|e| format!("{}: {e}", at(g.span()))))
+            .collect::<Result<Vec<_>, String>>()?;
+        let solution = match &step.solution {
+            Some(text) => {
+                let params = StartParams::parse(text.get_ref());
+                if let Some(problem) = params.problems.first() {
+                    return Err(format!("{}: the solution: {problem}", at(text.span())));
+                }
+                Some(params.setup())
+            }
+            None => None,
+        };
+        if solution.is_some() != !goals.is_empty() {
+            return Err(format!(
+                "{}: a step with a goal has a solution that reaches it (and only then: the \
+                 step \"{}\")",
+                at(step.setup.span()),
+                step.title
+            ));
+        }
+        if step.task.is_some() != !goals.is_empty() {
+            return Err(format!(
+                "{}: a step with a task has a goal to check it, and a goal has a task saying \
+                 what to do (the step \"{}\")",
+                at(step.setup.span()),
+                step.title
+            ));
+        }
+        steps.push(LessonStep {
+            title: step.title,
+            setup: params.setup(),
+            text: step.text.trim().to_owned(),
+            formula: step.formula.map(|f| f.trim_end().to_owned()),
+            task: step.task.map(|t| t.trim().to_owned()),
+            goals,
+            why: step.why.map(|w| w.trim().to_owned()),
+            solution,
+        });
+    }
+    Ok(Lesson {
+        name,
+        title: parsed.title,
+        section: parsed.section,
+        steps,
+    })
+}
+
+/// `slab-test` for `03-slab-test.toml`: the file's name without its order number and
+/// extension.
+pub fn lesson_name(file: &str) -> String {
+    let stem = file.strip_suffix(".toml").unwrap_or(file);
+    let unnumbered = stem
+        .split_once('-')
+        .filter(|(number, _)| !number.is_empty() && number.chars().all(|c| c.is_ascii_digit()))
+        .map_or(stem, |(_, rest)| rest);
+    unnumbered.to_owned()
+}
+
+/// The line (from 1) of byte `offset` in `text`.
+fn line_of(text: &str, offset: usize) -> usize {
+    text.get(..offset)
+        .map_or(0, |before| before.matches('\n').count())
+        + 1
+}

@@ -1,0 +1,201 @@
+//! A goal as a lesson writes it: `QUANTITY OP TARGET`, e.g. `answer = miss`,
+//! `nodes-visited >= 90%`, `primitives-tested < compare`, `step = end`, `ray-dx = 0`.
+//! [`QUANTITIES`] lists the quantities; a line that does not read is refused with what was
+//! expected.
+
+use crate::model::goal::{Comparison, Goal, Quantity, Target, Word};
+use crate::persist::{StructureName, TaskName, VariantName};
+
+/// The quantities a goal reads, with what each is (the lessons' README lists these).
+pub const QUANTITIES: [(&str, Quantity, &str); 16] = [
+    (
+        "answer",
+        Quantity::Answer,
+        "hit or miss: whether the query found something",
+    ),
+    (
+        "structure",
+        Quantity::Structure,
+        "the structure's name (kd-tree, grid, ...)",
+    ),
+    (
+        "task",
+        Quantity::Task,
+        "the task's name (first-hit, nearest, build, ...)",
+    ),
+    (
+        "variant",
+        Quantity::Variant,
+        "full, lecture or lecture-pruned",
+    ),
+    (
+        "nodes-visited",
+        Quantity::NodesVisited,
+        "nodes (cells) the query visited",
+    ),
+    (
+        "bound-tests",
+        Quantity::BoundTests,
+        "bounding-volume (cell, plane) tests of the query",
+    ),
+    (
+        "primitives-tested",
+        Quantity::PrimitivesTested,
+        "primitive tests of the query",
+    ),
+    ("nodes", Quantity::Nodes, "the structure's nodes (cells)"),
+    ("primitives", Quantity::Primitives, "the scene's primitives"),
+    (
+        "step",
+        Quantity::Step,
+        "the playback step shown (end: the last)",
+    ),
+    (
+        "ray-dx",
+        Quantity::RayDirection(0),
+        "the ray direction's x, as a unit vector",
+    ),
+    (
+        "ray-dy",
+        Quantity::RayDirection(1),
+        "the ray direction's y, as a unit vector",
+    ),
+    (
+        "ray-dz",
+        Quantity::RayDirection(2),
+        "the ray direction's z, as a unit vector (3D)",
+    ),
+    ("ray-x", Quantity::RayOrigin(0), "the ray origin's x"),
+    ("ray-y", Quantity::RayOrigin(1), "the ray origin's y"),
+    ("ray-z", Quantity::RayOrigin(2), "the ray origin's z (3D)"),
+];
+
+/// The comparisons, longest first (so `<=` is not read as `<`).
+const COMPARISONS: [(&str, Comparison); 7] = [
+    ("<=", Comparison::AtMost),
+    (">=", Comparison::AtLeast),
+    ("!=", Comparison::NotEqual),
+    ("==", Comparison::Equal),
+    ("=", Comparison::Equal),
+    ("<", Comparison::Less),
+    (">", Comparison::Greater),
+];
+
+/// Reads one goal.
+///
+/// # Errors
+/// What does not read, and what was expected there.
+pub fn parse(text: &str) -> Result<Goal, String> {
+    let (at, symbol, comparison) = COMPARISONS
+        .iter()
+        .filter_map(|&(symbol, c)| text.find(symbol).map(|at| (at, symbol, c)))
+        // The first comparison in the line; at one place, the longest (listed first).
+        .min_by_key(|&(at, _, _)| at)
+        .ok_or_else(|| format!("the goal \"{text}\" has no comparison (=, !=, <, <=, >, >=)"))?;
+    let name = text[..at].trim();
+    let value = text[at + symbol.len()..].trim();
+    let quantity = QUANTITIES
+        .iter()
+        .find(|(n, _, _)| *n == name)
+        .map(|&(_, q, _)| q)
+        .ok_or_else(|| {
+            let names: Vec<&str> = QUANTITIES.iter().map(|(n, _, _)| *n).collect();
+            format!(
+                "the goal \"{text}\": {}",
+                crate::persist::no_such_name("quantity", name, &names)
+            )
+        })?;
+    let target = target(quantity, value).map_err(|e| format!("the goal \"{text}\": {e}"))?;
+    let words = matches!(target, Target::Word(_));
+    if words && !matches!(comparison, Comparison::Equal | Comparison::NotEqual) {
+        return Err(format!(
+            "the goal \"{text}\": a name is compared with = or != only"
+        ));
+    }
+    Ok(Goal {
+        quantity,
+        comparison,
+        target,
+        text: text.trim().to_owned(),
+    })
+}
+
+/// What `quantity` is compared with, read from `value`.
+fn target(quantity: Quantity, value: &str) -> Result<Target, String> {
+    let word = |names: &[&str], kind: &str| crate::persist::no_such_name(kind, value, names);
+    match quantity {
+        Quantity::Answer => match value {
+            "hit" => Ok(Target::Word(Word::Hit)),
+            "miss" => Ok(Target::Word(Word::Miss)),
+            _ => Err(word(&["hit", "miss"], "answer")),
+        },
+        Quantity::Structure => StructureName::from_name(value)
+            .map(|s| Target::Word(Word::Structure(s.into())))
+            .ok_or_else(|| word(StructureName::NAMES, "structure")),
+        Quantity::Task => TaskName::from_name(value)
+            .map(|t| Target::Word(Word::Task(t.into())))
+            .ok_or_else(|| word(TaskName::NAMES, "task")),
+        Quantity::Variant => VariantName::from_name(value)
+            .map(|v| Target::Word(Word::Variant(v.into())))
+            .ok_or_else(|| word(VariantName::NAMES, "variant")),
+        _ if value == "compare" => Ok(Target::Compare),
+        Quantity::Step if value == "end" => Ok(Target::End),
+        _ => {
+            let (digits, percent) = match value.strip_suffix('%') {
+                Some(d) => (d.trim(), true),
+                None => (value, false),
+            };
+            let n: f64 = digits
+                .parse()
+                .ok()
+                .filter(|n: &f64| n.is_finite())
+                .ok_or_else(|| {
+                    format!(
+                        "\"{value}\" is not a number (nor compare{})",
+                        if quantity == Quantity::Step {
+                            ", nor end"
+                        } else {
+                            ""
+                        }
+                    )
+                })?;
+            if !percent {
+                return Ok(Target::Number(n));
+            }
+            let counts = matches!(
+                quantity,
+                Quantity::NodesVisited
+                    | Quantity::BoundTests
+                    | Quantity::PrimitivesTested
+                    | Quantity::Nodes
+                    | Quantity::Primitives
+            );
+            if counts {
+                Ok(Target::Percent(n))
+            } else {
+                Err(
+                    "a percentage is of the nodes or the primitives: only their counts take one"
+                        .to_owned(),
+                )
+            }
+        }
+    }
+}
+
+/// A goal's value as a lesson writes it: `37`, `0.707`, `hit`, `aabb-tree`.
+pub fn value_text(value: crate::model::goal::Value) -> String {
+    use crate::model::goal::Value;
+    let stored = |name: Result<serde_json::Value, serde_json::Error>| match name {
+        Ok(serde_json::Value::String(word)) => word,
+        _ => String::from("?"),
+    };
+    match value {
+        Value::Number(n) if n.fract() == 0.0 => format!("{n}"),
+        Value::Number(n) => format!("{n:.3}"),
+        Value::Word(Word::Hit) => "hit".to_owned(),
+        Value::Word(Word::Miss) => "miss".to_owned(),
+        Value::Word(Word::Structure(s)) => stored(serde_json::to_value(StructureName::from(s))),
+        Value::Word(Word::Task(t)) => stored(serde_json::to_value(TaskName::from(t))),
+        Value::Word(Word::Variant(v)) => stored(serde_json::to_value(VariantName::from(v))),
+    }
+}

@@ -1,0 +1,242 @@
+//! A lesson step's goal: a comparison read live from the lab ("primitives-tested < compare",
+//! "answer = miss", "nodes-visited >= 90%"). A step's goal is reached when all its
+//! comparisons hold at once; [`Lab`] checks after every action. The text form is parsed by
+//! [`crate::lessons`], and its words are listed in `lessons/README.md`.
+
+use bvhlab::Vector;
+
+use super::dimension::LabPrimitive;
+use super::half::Half;
+use super::question::{Task, Variant};
+use super::recording::Answer;
+use super::structures::StructureKind;
+use super::{Dimension, Lab};
+
+/// What a goal reads from the half shown (its first lane, unless compared with the second).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Quantity {
+    /// Whether the query found something: `hit` or `miss` (for a point query, whether it
+    /// found a primitive).
+    Answer,
+    /// The structure's kind.
+    Structure,
+    /// The task stepped through.
+    Task,
+    /// The algorithm's version.
+    Variant,
+    /// Nodes (cells) the whole query visited.
+    NodesVisited,
+    /// Bounding-volume (cell, plane) tests of the whole query.
+    BoundTests,
+    /// Primitive tests of the whole query.
+    PrimitivesTested,
+    /// The structure's nodes (cells).
+    Nodes,
+    /// The scene's primitives.
+    Primitives,
+    /// The playback step shown.
+    Step,
+    /// The ray direction's x, y or z component, as a unit vector.
+    RayDirection(usize),
+    /// The ray origin's x, y or z.
+    RayOrigin(usize),
+}
+
+/// How a quantity is compared.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Comparison {
+    /// `=` (numbers: within a thousandth of the target's size, at least 0.001).
+    Equal,
+    /// `!=`.
+    NotEqual,
+    /// `<`.
+    Less,
+    /// `<=`.
+    AtMost,
+    /// `>`.
+    Greater,
+    /// `>=`.
+    AtLeast,
+}
+
+/// A word a quantity can be.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Word {
+    /// The query found something.
+    Hit,
+    /// It found nothing.
+    Miss,
+    /// A structure.
+    Structure(StructureKind),
+    /// A task.
+    Task(Task),
+    /// A version of the algorithm.
+    Variant(Variant),
+}
+
+/// What a quantity is compared with.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Target {
+    /// A number.
+    Number(f64),
+    /// A share of the structure's nodes (node quantities) or of the scene's primitives
+    /// (primitive tests), in percent.
+    Percent(f64),
+    /// A word.
+    Word(Word),
+    /// The last playback step.
+    End,
+    /// The same quantity in the comparison's second lane.
+    Compare,
+}
+
+/// One comparison of a goal.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Goal {
+    /// What is read.
+    pub quantity: Quantity,
+    /// How.
+    pub comparison: Comparison,
+    /// With what.
+    pub target: Target,
+    /// As the lesson wrote it (shown beside its mark).
+    pub text: String,
+}
+
+/// A quantity's value.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Value {
+    /// A count, a step or a coordinate.
+    Number(f64),
+    /// A word.
+    Word(Word),
+}
+
+impl Goal {
+    /// Whether the comparison holds in `lab` now (it does not while a value is unknown: no
+    /// recording yet, no ray, no second lane).
+    pub fn holds(&self, lab: &Lab) -> bool {
+        match lab.dimension() {
+            Dimension::Two => self.holds_in(&lab.two().half, lab.two().prims().segments.len()),
+            Dimension::Three => self.holds_in(&lab.three().half, lab.three().triangles().len()),
+        }
+    }
+
+    /// The quantity's value now, or `None` while unknown.
+    pub fn now(&self, lab: &Lab) -> Option<Value> {
+        match lab.dimension() {
+            Dimension::Two => read(
+                &lab.two().half,
+                0,
+                self.quantity,
+                lab.two().prims().segments.len(),
+            ),
+            Dimension::Three => read(
+                &lab.three().half,
+                0,
+                self.quantity,
+                lab.three().triangles().len(),
+            ),
+        }
+    }
+
+    fn holds_in<P: LabPrimitive>(&self, half: &Half<P>, primitives: usize) -> bool {
+        let Some(value) = read(half, 0, self.quantity, primitives) else {
+            return false;
+        };
+        let target = match self.target {
+            Target::Number(n) => Value::Number(n),
+            Target::Word(w) => Value::Word(w),
+            Target::End => Value::Number(half.steps() as f64),
+            Target::Percent(p) => {
+                let whole = match self.quantity {
+                    Quantity::PrimitivesTested | Quantity::Primitives => primitives,
+                    _ => match read(half, 0, Quantity::Nodes, primitives) {
+                        Some(Value::Number(n)) => n as usize,
+                        _ => return false,
+                    },
+                };
+                Value::Number(p / 100.0 * whole as f64)
+            }
+            Target::Compare => match read(half, 1, self.quantity, primitives) {
+                Some(v) => v,
+                None => return false,
+            },
+        };
+        compare(value, self.comparison, target)
+    }
+}
+
+/// `value` compared with `target`; words compare only for (in)equality.
+fn compare(value: Value, comparison: Comparison, target: Value) -> bool {
+    match (value, target) {
+        (Value::Number(a), Value::Number(b)) => {
+            let equal = (a - b).abs() <= (b.abs() * 1e-3).max(1e-3);
+            match comparison {
+                Comparison::Equal => equal,
+                Comparison::NotEqual => !equal,
+                Comparison::Less => a < b && !equal,
+                Comparison::AtMost => a <= b || equal,
+                Comparison::Greater => a > b && !equal,
+                Comparison::AtLeast => a >= b || equal,
+            }
+        }
+        (Value::Word(a), Value::Word(b)) => match comparison {
+            Comparison::Equal => a == b,
+            Comparison::NotEqual => a != b,
+            _ => false,
+        },
+        _ => false,
+    }
+}
+
+/// `quantity` in lane `lane` of `half` (`None`: unknown).
+fn read<P: LabPrimitive>(
+    half: &Half<P>,
+    lane: usize,
+    quantity: Quantity,
+    primitives: usize,
+) -> Option<Value> {
+    if lane >= half.lane_count() {
+        return None;
+    }
+    let lane = half.lane_at(lane);
+    let number = |n: u64| Some(Value::Number(n as f64));
+    let recording = lane.recorded();
+    match quantity {
+        Quantity::Structure => Some(Value::Word(Word::Structure(lane.settings.kind))),
+        Quantity::Task => Some(Value::Word(Word::Task(half.task))),
+        Quantity::Variant => Some(Value::Word(Word::Variant(
+            half.variant_for(lane.settings.kind),
+        ))),
+        Quantity::Primitives => number(primitives as u64),
+        Quantity::Step => number(half.playback.shown(half.steps()) as u64),
+        Quantity::Nodes => lane.marks().map(|m| Value::Number(m.nodes.len() as f64)),
+        Quantity::NodesVisited => number(recording?.cost.nodes_visited),
+        Quantity::BoundTests => number(recording?.cost.bound_tests),
+        Quantity::PrimitivesTested => number(recording?.cost.prim_tests),
+        Quantity::Answer => {
+            let found = match &recording?.answer {
+                Answer::Hit(hit) => hit.is_some(),
+                Answer::Hits(hits) => !hits.is_empty(),
+                Answer::Nearest(nearest) => !nearest.is_empty(),
+                Answer::Indices(indices) => !indices.is_empty(),
+                Answer::Nodes(_) => return None,
+            };
+            Some(Value::Word(if found { Word::Hit } else { Word::Miss }))
+        }
+        Quantity::RayDirection(axis) | Quantity::RayOrigin(axis) => {
+            let ray = recording?.question.ray?;
+            if axis >= P::Point::DIM {
+                return None;
+            }
+            let value = if matches!(quantity, Quantity::RayDirection(_)) {
+                let dir = ray.dir();
+                dir.coord(axis) / dir.length()
+            } else {
+                ray.origin().coord(axis)
+            };
+            Some(Value::Number(f64::from(value)))
+        }
+    }
+}

@@ -1,0 +1,142 @@
+//! A lesson walks the lecture in the lab: each step puts the lab in a state ([`Setup`]), says
+//! a few sentences and the formula or pseudocode it is about, and gives the student a task
+//! whose goal the lab checks live ([`Goal`]). Lessons are data, written by hand in
+//! `crates/bvhlab-app/lessons/` and read by [`crate::lessons`]; here is what the model keeps
+//! of them: the lesson open, its step, and which steps' goals were reached.
+
+use std::sync::Arc;
+
+use super::goal::Goal;
+use super::setup::Setup;
+use super::{Lab, Note};
+
+/// A lesson, read from its file.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Lesson {
+    /// Its name in addresses and files (`slab-test` for `lessons/03-slab-test.toml`).
+    pub name: String,
+    /// Its title.
+    pub title: String,
+    /// The lecture's section it follows ("§2").
+    pub section: String,
+    /// Its steps, in order.
+    pub steps: Vec<LessonStep>,
+}
+
+/// One step of a lesson.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LessonStep {
+    /// Its title.
+    pub title: String,
+    /// Where the lab starts for it.
+    pub setup: Setup,
+    /// What it says: a few sentences.
+    pub text: String,
+    /// The formula or pseudocode it is about, shown in a monospace block.
+    pub formula: Option<String>,
+    /// What the student is asked to do (shown with a mark that fills in when reached).
+    pub task: Option<String>,
+    /// The goal: reached when every comparison holds at once (none: nothing to check).
+    pub goals: Vec<Goal>,
+    /// Why the goal matters, shown once it is reached.
+    pub why: Option<String>,
+    /// A state that reaches the goal, put in place on top of the step's and followed by
+    /// playback to the end: the tests check that it does, and a teacher reads it as the
+    /// answer.
+    pub solution: Option<Setup>,
+}
+
+/// The lesson open and where the student is in it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LessonProgress {
+    /// The lesson.
+    pub lesson: Arc<Lesson>,
+    /// The step shown (0 is the first).
+    pub step: usize,
+    /// For each step, whether its goal was reached (it stays reached).
+    pub reached: Vec<bool>,
+}
+
+impl LessonProgress {
+    /// The step shown.
+    pub fn current(&self) -> &LessonStep {
+        &self.lesson.steps[self.step]
+    }
+
+    /// Whether the step shown's goal was reached.
+    pub fn reached_here(&self) -> bool {
+        self.reached.get(self.step).copied().unwrap_or(false)
+    }
+}
+
+/// A change of the lesson.
+#[derive(Clone, Debug, PartialEq)]
+pub enum LessonAction {
+    /// Opens `lesson` at `step` (0 is the first) and puts the lab in that step's state;
+    /// opening the step shown again starts it afresh (its goal stays reached).
+    Open {
+        /// The lesson.
+        lesson: Arc<Lesson>,
+        /// The step.
+        step: usize,
+    },
+    /// Closes the lesson; the lab stays as it is.
+    Close,
+}
+
+impl Lab {
+    /// The lesson open, if any.
+    pub fn lesson(&self) -> Option<&LessonProgress> {
+        self.lesson.as_ref()
+    }
+
+    /// Carries out a lesson action.
+    pub(super) fn apply_lesson(&mut self, action: LessonAction) -> Result<Note, String> {
+        let LessonAction::Open { lesson, step } = action else {
+            self.lesson = None;
+            return Ok(Note::Clear);
+        };
+        let Some(shown) = lesson.steps.get(step) else {
+            return Err(format!(
+                "the lesson \"{}\" has {} steps; there is no step {}",
+                lesson.name,
+                lesson.steps.len(),
+                step + 1
+            ));
+        };
+        let reached = match self.lesson.take() {
+            Some(open) if open.lesson.name == lesson.name => open.reached,
+            _ => vec![false; lesson.steps.len()],
+        };
+        // The lesson is put back only once the step's state is in place: its actions must
+        // not count as reaching the goal of the step the student is leaving.
+        let source = format!("the lesson \"{}\", step {}", lesson.name, step + 1);
+        let problems = self.apply_setup(&shown.setup, &source);
+        self.lesson = Some(LessonProgress {
+            lesson,
+            step,
+            reached,
+        });
+        Ok(if problems.is_empty() {
+            Note::Clear
+        } else {
+            Note::Say(problems.join("; "))
+        })
+    }
+
+    /// Marks the step shown's goal reached once all its comparisons hold (after every
+    /// action; a reached goal stays reached).
+    pub(super) fn check_goal(&mut self) {
+        let Some(progress) = &self.lesson else {
+            return;
+        };
+        let goals = &progress.current().goals;
+        if progress.reached_here() || goals.is_empty() || !goals.iter().all(|g| g.holds(self)) {
+            return;
+        }
+        let step = progress.step;
+        if let Some(open) = &mut self.lesson {
+            open.reached[step] = true;
+        }
+    }
+}

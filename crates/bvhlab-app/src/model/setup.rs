@@ -1,0 +1,161 @@
+//! A starting state in a few words: the scene or mesh, the structure (and one to compare),
+//! the task and its version, the ray or point, and the playback step. The page's address
+//! (`?preset=kd-tree&ray=...`) and each lesson step say where the lab starts with one, and
+//! [`Lab::apply_setup`] puts it in place with ordinary actions, so its rules (a preset
+//! clears the ray, a ray makes the task a ray task, ...) are the same as by hand.
+
+use bvhlab::Ray3;
+use bvhlab::glam::{Vec2, Vec3};
+
+use super::lab2d::RayHandles;
+use super::mesh::MeshSource;
+use super::presets::Preset;
+use super::question::{Task, Variant};
+use super::structures::StructureKind;
+use super::{Action, Action2d, Action3d, Dimension, HalfAction, Lab, PlaybackAction};
+
+/// Where the lab starts: each part that is `Some` is put in place, in the order of the
+/// fields.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Setup {
+    /// A 2D scene (shows the 2D half).
+    pub preset: Option<Preset>,
+    /// A built-in mesh's slug (shows the 3D half).
+    pub mesh: Option<String>,
+    /// The structure of the half shown (its other build options stay).
+    pub structure: Option<StructureKind>,
+    /// A second structure beside the first.
+    pub compare: Option<StructureKind>,
+    /// The ray: `x,y,dx,dy` in 2D or `x,y,z,dx,dy,dz` in 3D.
+    pub ray: Option<Vec<f32>>,
+    /// The query point: `x,y` or `x,y,z`.
+    pub point: Option<Vec<f32>>,
+    /// What is stepped through.
+    pub task: Option<Task>,
+    /// Which version of the algorithm.
+    pub variant: Option<Variant>,
+    /// The playback step (held until the recording is that long).
+    pub step: Option<usize>,
+}
+
+impl Lab {
+    /// Puts `setup` in place; returns what could not be used, one sentence each, naming
+    /// `source` ("the address", "lesson slab-test, step 2"). The rest still applies.
+    pub fn apply_setup(&mut self, setup: &Setup, source: &str) -> Vec<String> {
+        let mut problems = Vec::new();
+        let apply = |lab: &mut Self, action: Action, problems: &mut Vec<String>| {
+            if let Err(e) = lab.apply(action) {
+                problems.push(format!("{source}: {e}"));
+            }
+        };
+        if let Some(preset) = setup.preset {
+            apply(self, Action2d::LoadPreset(preset).into(), &mut problems);
+        }
+        if let Some(slug) = &setup.mesh {
+            apply(
+                self,
+                Action3d::OpenMesh(MeshSource::Builtin(slug.clone())).into(),
+                &mut problems,
+            );
+        }
+        let three = self.dimension() == Dimension::Three;
+        let settings = if three {
+            self.three().half.lane.settings
+        } else {
+            self.two().half.lane.settings
+        };
+        if let Some(kind) = setup.structure {
+            apply(
+                self,
+                HalfAction::SetStructure(super::structures::BuildSettings { kind, ..settings })
+                    .into(),
+                &mut problems,
+            );
+        }
+        if let Some(kind) = setup.compare {
+            apply(
+                self,
+                HalfAction::SetCompare(Some(super::structures::BuildSettings { kind, ..settings }))
+                    .into(),
+                &mut problems,
+            );
+        }
+        if let Some(numbers) = &setup.ray {
+            let action = if three {
+                ray3(numbers).map(|r| Action3d::SetRay(Some(r)).into())
+            } else {
+                ray2(numbers).map(|r| Action2d::SetRay(Some(r)).into())
+            };
+            match action {
+                Ok(action) => apply(self, action, &mut problems),
+                Err(e) => problems.push(format!("{source}'s ray {e}")),
+            }
+        }
+        if let Some(numbers) = &setup.point {
+            let action: Result<Action, String> = match (three, numbers.as_slice()) {
+                (false, &[x, y]) => Ok(Action2d::SetPoint(Some(Vec2::new(x, y))).into()),
+                (true, &[x, y, z]) => Ok(Action3d::SetPoint(Some(Vec3::new(x, y, z))).into()),
+                _ => Err(format!(
+                    "{source}'s point has {} numbers; the {} view takes {}",
+                    numbers.len(),
+                    if three { "3D" } else { "2D" },
+                    if three { 3 } else { 2 }
+                )),
+            };
+            match action {
+                // With a ray too, the ray's task stays (the point is placed for later).
+                Ok(action) => {
+                    let task = if three {
+                        self.three().half.task
+                    } else {
+                        self.two().half.task
+                    };
+                    apply(self, action, &mut problems);
+                    if setup.ray.is_some() {
+                        apply(self, HalfAction::SetTask(task).into(), &mut problems);
+                    }
+                }
+                Err(e) => problems.push(e),
+            }
+        }
+        if let Some(task) = setup.task {
+            apply(self, HalfAction::SetTask(task).into(), &mut problems);
+        }
+        if let Some(variant) = setup.variant {
+            apply(self, HalfAction::SetVariant(variant).into(), &mut problems);
+        }
+        if let Some(step) = setup.step {
+            apply(self, PlaybackAction::Hold(step).into(), &mut problems);
+        }
+        problems
+    }
+}
+
+/// A 2D ray from `x,y,dx,dy`, or what is wrong with them (to follow "the ray").
+fn ray2(n: &[f32]) -> Result<RayHandles, String> {
+    let &[x, y, dx, dy] = n else {
+        return Err(format!(
+            "has {} numbers; the 2D view takes 4 (x,y,dx,dy)",
+            n.len()
+        ));
+    };
+    let handles = RayHandles {
+        origin: Vec2::new(x, y),
+        target: Vec2::new(x + dx, y + dy),
+    };
+    handles
+        .ray()
+        .map(|_| handles)
+        .map_err(|e| format!("cannot be used: {e}"))
+}
+
+/// A 3D ray from `x,y,z,dx,dy,dz`, or what is wrong with them.
+fn ray3(n: &[f32]) -> Result<Ray3, String> {
+    let &[x, y, z, dx, dy, dz] = n else {
+        return Err(format!(
+            "has {} numbers; the 3D view takes 6 (x,y,z,dx,dy,dz)",
+            n.len()
+        ));
+    };
+    Ray3::new(Vec3::new(x, y, z), Vec3::new(dx, dy, dz)).map_err(|e| format!("cannot be used: {e}"))
+}

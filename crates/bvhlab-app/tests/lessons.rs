@@ -1,0 +1,266 @@
+//! The lessons: every file in `crates/bvhlab-app/lessons/` reads; each step opens without a
+//! problem, its goal is not reached where the step starts (the student has something to
+//! do) and is reached by the step's solution; a bad lesson file is refused with its line;
+//! and a lesson opens from the page's address and in the Lessons panel.
+
+mod common;
+
+use bvhlab_app::embed::StartParams;
+use bvhlab_app::lessons::{self, format};
+use bvhlab_app::model::{Action, Lab, LessonAction, PlaybackAction};
+
+/// A frame's worth of time, so a held playback step and a 3D load take effect.
+fn tick(lab: &mut Lab) {
+    for _ in 0..3 {
+        lab.apply(Action::Tick {
+            seconds: 0.0,
+            build_ms: 1e6,
+        })
+        .expect("a tick applies");
+    }
+}
+
+/// Each goal of the step shown with its value now, for a failure's message.
+fn goals_now(lab: &Lab) -> String {
+    let Some(progress) = lab.lesson() else {
+        return "no lesson open".to_owned();
+    };
+    progress
+        .current()
+        .goals
+        .iter()
+        .map(|g| {
+            let now = g
+                .now(lab)
+                .map_or("unknown".to_owned(), lessons::goal_text::value_text);
+            format!("`{}` (now {now}, holds: {})", g.text, g.holds(lab))
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+#[test]
+fn every_lesson_file_reads() {
+    assert!(
+        lessons::files().len() >= 6,
+        "the lessons: {:?}",
+        lessons::files()
+    );
+    for (file, lesson) in lessons::files().iter().zip(lessons::catalog()) {
+        let lesson = lesson.as_ref().unwrap_or_else(|e| panic!("{e}"));
+        assert!(!lesson.steps.is_empty(), "{}", file.0);
+        assert_eq!(lesson.name, format::lesson_name(file.0));
+    }
+    let names: Vec<&str> = lessons::lessons().map(|l| l.name.as_str()).collect();
+    let mut unique = names.clone();
+    unique.sort_unstable();
+    unique.dedup();
+    assert_eq!(unique.len(), names.len(), "two lessons share a name: {names:?}");
+    // The README's table of address parameters names every lesson.
+    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../README.md"))
+        .expect("the README");
+    let row = readme
+        .lines()
+        .find(|l| l.starts_with("| `lesson` |"))
+        .expect("the README's lesson parameter");
+    for name in names {
+        assert!(row.contains(&format!("`{name}`")), "the README's row lacks {name}: {row}");
+    }
+}
+
+#[test]
+fn each_step_opens_cleanly_starts_unreached_and_its_solution_reaches_it() {
+    let mut checked = 0;
+    let mut failures = Vec::new();
+    for lesson in lessons::lessons() {
+        for (index, step) in lesson.steps.iter().enumerate() {
+            let at = format!("{} step {} ({})", lesson.name, index + 1, step.title);
+            let mut lab = Lab::default();
+            lab.apply(Action::Lesson(LessonAction::Open {
+                lesson: lesson.clone(),
+                step: index,
+            }))
+            .unwrap_or_else(|e| panic!("{at}: {e}"));
+            tick(&mut lab);
+            assert_eq!(lab.message(), None, "{at} opened with a problem");
+            let progress = lab.lesson().expect("the lesson is open");
+            assert_eq!(progress.step, index, "{at}");
+            let Some(solution) = &step.solution else {
+                assert!(step.goals.is_empty(), "{at}");
+                continue;
+            };
+            if progress.reached_here() {
+                failures.push(format!(
+                    "{at}: the goal is reached before the student does anything: {}",
+                    goals_now(&lab)
+                ));
+            }
+            let problems = lab.apply_setup(solution, "the solution");
+            assert!(problems.is_empty(), "{at}: {problems:?}");
+            lab.apply(PlaybackAction::End.into()).expect("to the end");
+            tick(&mut lab);
+            if !lab.lesson().is_some_and(|p| p.reached_here()) {
+                failures.push(format!(
+                    "{at}: the solution does not reach the goal: {}",
+                    goals_now(&lab)
+                ));
+            }
+            checked += 1;
+        }
+    }
+    assert!(failures.is_empty(), "{failures:#?}");
+    assert!(checked >= 10, "only {checked} steps have goals");
+}
+
+#[test]
+fn a_reached_goal_stays_reached_and_moving_on_does_not_reach_the_next() {
+    let lesson = lessons::lessons()
+        .find(|l| l.steps.len() >= 2 && l.steps[0].solution.is_some())
+        .expect("a lesson of two steps or more whose first has a goal")
+        .clone();
+    let mut lab = Lab::default();
+    let open = |step| {
+        Action::Lesson(LessonAction::Open {
+            lesson: lesson.clone(),
+            step,
+        })
+    };
+    lab.apply(open(0)).expect("opens");
+    let solution = lesson.steps[0].solution.clone().expect("a solution");
+    lab.apply_setup(&solution, "the solution");
+    lab.apply(PlaybackAction::End.into()).expect("to the end");
+    assert!(lab.lesson().expect("open").reached_here(), "{}", goals_now(&lab));
+    lab.apply(open(1)).expect("the next step");
+    let progress = lab.lesson().expect("open");
+    assert_eq!(progress.reached, {
+        let mut r = vec![false; lesson.steps.len()];
+        r[0] = true;
+        r
+    });
+    // Back to the first step: it starts afresh, and stays marked.
+    lab.apply(open(0)).expect("back");
+    assert!(lab.lesson().expect("open").reached_here());
+    lab.apply(Action::Lesson(LessonAction::Close)).expect("closes");
+    assert!(lab.lesson().is_none());
+    let past = lesson.steps.len();
+    let refused = lab.apply(open(past)).expect_err("no such step");
+    assert!(refused.contains("has"), "{refused}");
+}
+
+/// What reading `text` as `03-test.toml` says.
+fn refusal(text: &str) -> String {
+    format::read("03-test.toml", text).expect_err("a bad lesson is refused")
+}
+
+#[test]
+fn a_bad_lesson_file_is_refused_with_its_line() {
+    let good_step = "[[step]]\ntitle = \"A\"\nsetup = \"preset=kd-tree\"\ntext = \"t\"\n";
+    let head = "title = \"T\"\nsection = \"§3\"\n";
+    assert!(format::read("03-test.toml", &format!("{head}{good_step}")).is_ok());
+    let cases = [
+        // A key the format does not have (a typo), on line 4.
+        (format!("{head}{good_step}txet = \"x\"\n"), "03-test.toml:", "txet"),
+        // A setup the address would not read.
+        (
+            format!("{head}[[step]]\ntitle = \"A\"\nsetup = \"preset=kdtree\"\ntext = \"t\"\n"),
+            "03-test.toml:5:",
+            "kd-tree",
+        ),
+        // A goal with an unknown quantity.
+        (
+            format!(
+                "{head}{good_step}task = \"x\"\nsolution = \"ray=0,0,1,0\"\ngoal = [\n  \"nodes-vistied < 3\",\n]\n"
+            ),
+            "03-test.toml:10:",
+            "nodes-visited",
+        ),
+        // A goal without a task to say what to do.
+        (
+            format!("{head}{good_step}solution = \"ray=0,0,1,0\"\ngoal = [\"answer = hit\"]\n"),
+            "03-test.toml:5:",
+            "task",
+        ),
+        // A task without a solution.
+        (
+            format!("{head}{good_step}task = \"x\"\ngoal = [\"answer = hit\"]\n"),
+            "03-test.toml:5:",
+            "solution",
+        ),
+        // A word compared as a number.
+        (
+            format!(
+                "{head}{good_step}task = \"x\"\nsolution = \"ray=0,0,1,0\"\ngoal = [\"answer < hit\"]\n"
+            ),
+            "03-test.toml:9:",
+            "= or !=",
+        ),
+        (format!("{head}"), "03-test.toml:", "step"),
+        ("title = \"T\"\nsection = \n".to_owned(), "03-test.toml:2:", ""),
+    ];
+    for (text, place, word) in cases {
+        let said = refusal(&text);
+        assert!(said.starts_with(place), "{said:?} should start with {place:?}\n{text}");
+        assert!(said.contains(word), "{said:?} should name {word:?}");
+    }
+}
+
+#[test]
+fn the_address_opens_a_lesson_at_its_step() {
+    let lesson = lessons::lessons()
+        .find(|l| l.steps.len() >= 2)
+        .expect("a lesson of two steps");
+    let params = StartParams::parse(&format!("?lesson={}&step=2", lesson.name));
+    assert!(params.problems.is_empty(), "{:?}", params.problems);
+    let mut lab = Lab::default();
+    let problems = params.apply(&mut lab);
+    assert!(problems.is_empty(), "{problems:?}");
+    let progress = lab.lesson().expect("the lesson is open");
+    assert_eq!((progress.lesson.name.as_str(), progress.step), (lesson.name.as_str(), 1));
+
+    let mut lab = Lab::default();
+    let problems = StartParams::parse("?lesson=slab-tset").apply(&mut lab);
+    assert!(lab.lesson().is_none());
+    assert!(
+        problems.iter().any(|p| p.contains("no lesson named") && p.contains("slab-test")),
+        "{problems:?}"
+    );
+}
+
+#[test]
+fn the_lessons_panel_starts_a_lesson_and_moves_through_it() {
+    let mut h = common::lab();
+    let first = lessons::lessons().next().expect("a lesson").clone();
+    assert!(common::shows(&h, "A lesson walks the lecture"));
+    common::click(&mut h, &format!("1. {} {}", first.section, first.title));
+    let count = first.steps.len();
+    assert!(common::shows(&h, &format!("Step 1 of {count}: {}", first.steps[0].title)));
+    assert!(common::shows(&h, "Your task:"), "{:?}", common::labels(&h));
+    common::click(&mut h, "Next");
+    assert!(common::shows(&h, &format!("Step 2 of {count}")));
+    assert_eq!(h.state().lab().lesson().map(|p| p.step), Some(1));
+    common::click(&mut h, "Back");
+    assert_eq!(h.state().lab().lesson().map(|p| p.step), Some(0));
+    common::click(&mut h, "Close");
+    assert!(h.state().lab().lesson().is_none());
+    assert!(common::shows(&h, "A lesson walks the lecture"));
+}
+
+#[test]
+fn every_lesson_step_draws_in_the_panel() {
+    // Every glyph of every text and formula must be in the lab's fonts (egui refuses to draw
+    // one that is not), and each step's title shows.
+    let mut h = common::lab();
+    for lesson in lessons::lessons() {
+        for (index, step) in lesson.steps.iter().enumerate() {
+            common::act(
+                &mut h,
+                Action::Lesson(LessonAction::Open {
+                    lesson: lesson.clone(),
+                    step: index,
+                }),
+            );
+            let title = format!("Step {} of {}: {}", index + 1, lesson.steps.len(), step.title);
+            assert!(common::shows(&h, &title), "{title}: {:?}", common::labels(&h));
+        }
+    }
+}
