@@ -91,6 +91,8 @@
 //!   `fast_nearest.rs`), the slides' recursions (`lecture.rs`) and the stack (`stack.rs`).
 //! - `wide/`: [`Bvh4`], the 4-wide copy of an AABB tree (`layout.rs`), with its own
 //!   first-hit and closest-point walks (`ray.rs`, `nearest.rs`) and stack (`stack.rs`).
+//! - `refit.rs`: [`Bvh::refit`] after the primitives moved (Wald, Boulos and Shirley 2007),
+//!   its [`RefitReport`] and [`Bvh::needs_rebuild`]; [`Bvh4::refit`] is in `wide/refit.rs`.
 //! - `validate.rs` (the invariants) and `tests.rs` (unit tests that need private fields).
 //!
 //! ## Which walk each call runs
@@ -112,6 +114,8 @@
 //! | [`Bvh4::closest_point`] | `wide/nearest.rs` |
 //! | [`stats`](SpatialIndex::stats), [`Bvh::depths`] | `layout/stats.rs` |
 //! | [`validate`](SpatialIndex::validate) | `validate.rs` |
+//! | [`Bvh::refit`], [`Bvh::needs_rebuild`] | `refit.rs` |
+//! | [`Bvh4::refit`], [`Bvh4::needs_rebuild`], [`Bvh4::validate`] | `wide/refit.rs`, `wide/validate.rs` |
 //! | [`Bvh::build`], [`Bvh::with_options`]: an AABB tree with [`SplitMethod::BinnedSah`] | `build/fast.rs`, in one go |
 //! | [`Bvh::build`], [`Bvh::with_options`]: any other tree; [`Bvh::build_observed`] | `build/mod.rs` and `node_stages.rs`, the resumable builder run to the end |
 //! | [`BvhBuild::step`], [`BvhBuild::finish`] | the same builder, a budget at a time (`build/job.rs`) |
@@ -136,6 +140,7 @@
 
 mod build;
 pub mod layout;
+mod refit;
 mod validate;
 pub mod volume;
 mod walk;
@@ -148,6 +153,7 @@ pub use build::job::{BuildPhase, BuildProgress, BvhBuild};
 pub use build::options::{BvhOptions, MAX_DEPTH, SphereFit, SplitMethod};
 pub use build::split_log::SplitRecord;
 pub use layout::{Bvh, BvhNode};
+pub use refit::{RefitError, RefitReport};
 pub use volume::{NodeVolume, PreparedRange, PreparedRay, SLACK, TINY};
 pub use wide::{Bvh4, Bvh4Node, WIDTH};
 
