@@ -18,6 +18,14 @@ pub enum GeometryError {
     },
     /// A ray direction of length zero: it points nowhere, so no `t` can be measured along it.
     ZeroDirection,
+    /// A ray direction whose every component is subnormal (or zero): below
+    /// [`f32::MIN_POSITIVE`] (about 1.2e-38) in magnitude. Such a direction has no usable
+    /// inverse (`1 / 1e-40` overflows to infinity) and a hit at any ordinary distance would
+    /// lie at a `t` beyond `f32::MAX`, so the ray would silently never hit anything.
+    TinyDirection {
+        /// The direction, formatted.
+        value: String,
+    },
     /// A fit or structure was asked for with no points at all.
     Empty {
         /// What was empty ("point set", ...).
@@ -47,6 +55,13 @@ impl fmt::Display for GeometryError {
                 f,
                 "the ray direction is zero; give the ray a direction with a non-zero component \
                  (it need not be unit length)"
+            ),
+            Self::TinyDirection { value } => write!(
+                f,
+                "the ray direction {value} is too small: every component is below \
+                 f32::MIN_POSITIVE (about 1.2e-38, the smallest normal f32), where 1/d \
+                 overflows and no hit can be measured along it; scale the direction up \
+                 (it need not be unit length: t is measured in units of it)"
             ),
             Self::Empty { what } => write!(
                 f,

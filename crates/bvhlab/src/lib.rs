@@ -56,6 +56,7 @@ pub use error::GeometryError;
 pub use mesh::{Mesh, MeshError, MeshStats};
 pub use primitive::{Primitive, Segment2, Triangle3};
 pub use ray::Ray;
+pub use structure::bvh::Bvh4;
 pub use structure::{
     BruteForce, BspTree, Bvh, Event, Grid, Hit, KdTree, Nearest, NodeId, NodeOutline, NodeShape,
     Observer, Orthtree, Outline, QueryCost, RangeShape, Recorder, SpatialIndex, SplitPlane, Stats,
@@ -124,9 +125,11 @@ pub type Quadtree2 = Orthtree<Segment2>;
 /// An octree over triangles (the 3D orthtree).
 pub type Octree3 = Orthtree<Triangle3>;
 
-/// The names most programs need: the query traits and the 2D/3D types.
+/// The names most programs need: the query traits, the 2D/3D types, and [`Bvh4`], the
+/// fastest tree for many first-hit and closest-point queries.
 pub mod prelude {
     pub use crate::primitive::Primitive;
+    pub use crate::structure::bvh::Bvh4;
     pub use crate::structure::{Outline, SpatialIndex};
     pub use crate::vector::Vector;
     pub use crate::volume::BoundingVolume;

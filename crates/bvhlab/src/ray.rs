@@ -9,7 +9,8 @@ use crate::primitive::triangle::RayShear;
 ///
 /// The direction need not have unit length: `t` is measured in units of `dir`, exactly as in
 /// the lecture's `p(t) = e + t (s - e)`, where `t = 1` is the point `s`. Construction rejects
-/// non-finite coordinates and a zero direction, so every query can trust its ray.
+/// non-finite coordinates and a zero or subnormal direction, so every query can trust its
+/// ray.
 ///
 /// Construction also precomputes what the watertight triangle test needs of the direction
 /// (the permutation and shear of Woop, Benthin and Wald), so that a 3D query does that once
@@ -27,12 +28,24 @@ impl<V: Vector> Ray<V> {
     ///
     /// # Errors
     /// [`GeometryError::NonFinite`] when a coordinate is NaN or infinite;
-    /// [`GeometryError::ZeroDirection`] when `dir` is zero (`-0.0` counts as zero).
+    /// [`GeometryError::ZeroDirection`] when `dir` is zero (`-0.0` counts as zero);
+    /// [`GeometryError::TinyDirection`] when every component of `dir` is subnormal (below
+    /// [`f32::MIN_POSITIVE`] in magnitude), like `1e-40`: its inverse overflows and `t`
+    /// along it overflows for any hit at an ordinary distance, so such a ray would never hit
+    /// anything. One subnormal component beside a normal one is fine (it acts as zero in the
+    /// slab test, as it should). Any direction reaches only what lies within `f32::MAX`
+    /// units of it (`t` is measured in them): with a direction of length 1e-30, nothing
+    /// beyond 3.4e8; normalise tiny directions if you need farther hits.
     pub fn new(origin: V, dir: V) -> Result<Self, GeometryError> {
         check_finite(|| "ray origin".into(), origin)?;
         check_finite(|| "ray direction".into(), dir)?;
         if dir == V::ZERO {
             return Err(GeometryError::ZeroDirection);
+        }
+        if dir.abs().max_element() < f32::MIN_POSITIVE {
+            return Err(GeometryError::TinyDirection {
+                value: format!("{dir:?}"),
+            });
         }
         // 1/±0 = ±inf is what the slab test wants; the zero components are handled there.
         let mut inv_dir = V::ZERO;
@@ -55,7 +68,8 @@ impl<V: Vector> Ray<V> {
     /// The ray through `from` and `to`, with `t = 1` at `to` (the lecture's `e` and `s`).
     ///
     /// # Errors
-    /// As [`Ray::new`]; `from == to` gives [`GeometryError::ZeroDirection`].
+    /// As [`Ray::new`]; `from == to` gives [`GeometryError::ZeroDirection`], two points closer
+    /// than about 1e-38 in every coordinate [`GeometryError::TinyDirection`].
     pub fn through(from: V, to: V) -> Result<Self, GeometryError> {
         check_finite(|| "ray end point".into(), to)?;
         Self::new(from, to - from)

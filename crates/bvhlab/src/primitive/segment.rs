@@ -64,6 +64,31 @@ impl Segment2 {
         (t >= 0.0 && t.is_finite()).then_some(t as f32)
     }
 
+    /// Where on the segment a hit at `t` lies: the parameter `u` in `[0, 1]` with the hit at
+    /// `a + u (b - a)` (0 at `a`, 1 at `b`). A ray crossing the segment gets the ratio of
+    /// its end points' distances to the ray's line (the crossing [`ray_hit`](Self::ray_hit)
+    /// computes); a ray along it, the projection of `ray.at(t)`. 0 for a zero-length segment.
+    pub fn hit_parameter(&self, ray: &Ray2, t: f32) -> f32 {
+        let (o, d) = (ray.origin().as_dvec2(), ray.dir().as_dvec2());
+        let (pa, pb) = (self.a.as_dvec2() - o, self.b.as_dvec2() - o);
+        let (side_a, side_b) = (d.perp_dot(pa), d.perp_dot(pb));
+        let s = if side_a != side_b && (side_a - side_b).is_finite() {
+            side_a / (side_a - side_b)
+        } else {
+            let e = pb - pa;
+            let len2 = e.length_squared();
+            if len2 == 0.0 {
+                return 0.0;
+            }
+            (d * f64::from(t) - pa).dot(e) / len2
+        };
+        if s.is_nan() {
+            0.0
+        } else {
+            s.clamp(0.0, 1.0) as f32
+        }
+    }
+
     /// The point of the segment nearest to `p`: the projection of `p` on the line, clamped to
     /// the segment (Ericson, "Real-Time Collision Detection", §5.1.2).
     pub fn closest_point(&self, p: Vec2) -> Vec2 {
@@ -94,6 +119,10 @@ impl Primitive for Segment2 {
     }
     fn ray_hit(&self, ray: &Ray2) -> Option<f32> {
         Segment2::ray_hit(self, ray)
+    }
+    /// `[u, 0]`, with `u` the parameter along the segment ([`Segment2::hit_parameter`]).
+    fn hit_coordinates(&self, ray: &Ray2, t: f32) -> [f32; 2] {
+        [self.hit_parameter(ray, t), 0.0]
     }
     fn closest_point(&self, point: Vec2) -> Vec2 {
         Segment2::closest_point(self, point)

@@ -152,6 +152,38 @@ impl Triangle3 {
         t.is_finite().then_some(t)
     }
 
+    /// Where the ray crosses the triangle, as the barycentric coordinates `(u, v)` of
+    /// Möller and Trumbore ("Fast, Minimum Storage Ray/Triangle Intersection", JGT 1997):
+    /// the crossing is `(1 - u - v) a + u b + v c`, with `u, v >= 0` and `u + v <= 1`.
+    /// `None` when [`ray_hit`](Self::ray_hit) finds no crossing.
+    ///
+    /// Computed from the same edge values as the watertight test (each edge's value is the
+    /// scaled barycentric coordinate of the opposite corner), so a ray that hits gets
+    /// coordinates inside the triangle, without a second, differently rounded test: what
+    /// shading needs to interpolate normals and texture coordinates.
+    pub fn ray_barycentric(&self, ray: &Ray3) -> Option<(f32, f32)> {
+        let shear = ray.shear();
+        let origin = ray.origin();
+        let (a, b, c) = (
+            shear.apply(self.a - origin),
+            shear.apply(self.b - origin),
+            shear.apply(self.c - origin),
+        );
+        let edge = |p: Sheared, q: Sheared| {
+            f64::from(p.x) * f64::from(q.y) - f64::from(p.y) * f64::from(q.x)
+        };
+        // The weights of a, b and c.
+        let (wa, wb, wc) = (edge(c, b), edge(a, c), edge(b, a));
+        if (wa < 0.0 || wb < 0.0 || wc < 0.0) && (wa > 0.0 || wb > 0.0 || wc > 0.0) {
+            return None;
+        }
+        let det = wa + wb + wc;
+        if det == 0.0 || self.is_degenerate() {
+            return None;
+        }
+        Some(((wb / det) as f32, (wc / det) as f32))
+    }
+
     /// The point of the triangle nearest to `p`.
     ///
     /// Voronoi-region method of Ericson, "Real-Time Collision Detection", §5.1.5: find which
@@ -259,6 +291,11 @@ impl Primitive for Triangle3 {
     }
     fn ray_hit(&self, ray: &Ray3) -> Option<f32> {
         Triangle3::ray_hit(self, ray)
+    }
+    /// [`Triangle3::ray_barycentric`]; `[0, 0]` (corner `a`) for a ray that misses.
+    fn hit_coordinates(&self, ray: &Ray3, _t: f32) -> [f32; 2] {
+        self.ray_barycentric(ray)
+            .map_or([0.0, 0.0], |(u, v)| [u, v])
     }
     fn closest_point(&self, point: Vec3) -> Vec3 {
         Triangle3::closest_point(self, point)

@@ -1,7 +1,7 @@
 //! The baseline: test every primitive. The reference every structure is checked against, and
 //! the counter the lab shows beside each structure's.
 
-use super::query::by_t_then_prim;
+use super::query::{by_t_then_prim, placed};
 use super::{
     Event, Hit, HitTracker, Nearest, NearestSet, Observer, PointOf, PrimitiveResult, QueryCost,
     RangeShape, SpatialIndex, Stats, Traced, ValidationError,
@@ -55,7 +55,7 @@ impl<P: Primitive> SpatialIndex for BruteForce<P> {
             }
         }
         Traced {
-            answer: best.best(),
+            answer: placed(best.best(), &self.prims, ray),
             cost: tests(self.prims.len()),
         }
     }
@@ -74,7 +74,7 @@ impl<P: Primitive> SpatialIndex for BruteForce<P> {
             });
             if let Some(t) = t {
                 return Traced {
-                    answer: Some(Hit { prim: i, t }),
+                    answer: Some(Hit::on(i, t, prim, ray)),
                     cost: tests(i + 1),
                 };
             }
@@ -98,7 +98,7 @@ impl<P: Primitive> SpatialIndex for BruteForce<P> {
                 prim: prim_id(i),
                 result: t.map_or(PrimitiveResult::Miss, PrimitiveResult::Hit),
             });
-            hits.extend(t.map(|t| Hit { prim: i, t }));
+            hits.extend(t.map(|t| Hit::on(i, t, prim, ray)));
         }
         hits.sort_by(by_t_then_prim);
         Traced {

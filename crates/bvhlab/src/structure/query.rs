@@ -4,13 +4,96 @@
 use crate::volume::{Aabb, BoundingVolume, Sphere};
 use crate::{Primitive, Vector};
 
-/// A ray hit: which primitive, and where along the ray (`t` in units of the ray's direction).
+/// A ray hit: which primitive, where along the ray (`t` in units of the ray's direction), and
+/// where on the primitive (`u`, `v`).
+///
+/// `u` and `v` are what [`Primitive::hit_coordinates`] gives for the hit: for a triangle the
+/// barycentric coordinates of Möller and Trumbore, so the hit point is
+/// `(1 - u - v) a + u b + v c` and a shading normal or texture coordinate interpolates as
+/// `(1 - u - v) n_a + u n_b + v n_c`; for a 2D segment `u` is the parameter along it (the hit
+/// is `a + u (b - a)`) and `v` is 0; for a point both are 0. Every structure computes them
+/// the same way, from the primitive and the ray, so its hits equal brute force's.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Hit {
     /// The primitive's index in the slice the structure was built from.
     pub prim: usize,
     /// The ray parameter of the hit.
     pub t: f32,
+    /// The first coordinate on the primitive (a triangle's barycentric `u`, the weight of
+    /// corner `b`; a segment's parameter from `a` to `b`).
+    pub u: f32,
+    /// The second coordinate on the primitive (a triangle's barycentric `v`, the weight of
+    /// corner `c`; 0 for a segment).
+    pub v: f32,
+}
+
+impl Hit {
+    /// A hit on primitive `prim` (its input index) at `t`, with its coordinates on
+    /// `primitive` ([`Primitive::hit_coordinates`]).
+    pub fn on<P: Primitive>(
+        prim: usize,
+        t: f32,
+        primitive: &P,
+        ray: &crate::Ray<P::Point>,
+    ) -> Self {
+        let [u, v] = primitive.hit_coordinates(ray, t);
+        Self { prim, t, u, v }
+    }
+
+    /// A hit whose coordinates are not computed yet (the walks keep `(prim, t)` and place
+    /// only the answer, with [`placed`]).
+    #[inline]
+    pub(crate) fn unplaced(prim: usize, t: f32) -> Self {
+        Self {
+            prim,
+            t,
+            u: 0.0,
+            v: 0.0,
+        }
+    }
+}
+
+/// The hit with its coordinates on its primitive, `prims` in input order.
+#[inline]
+pub(crate) fn placed<P: Primitive>(
+    hit: Option<Hit>,
+    prims: &[P],
+    ray: &crate::Ray<P::Point>,
+) -> Option<Hit> {
+    hit.map(|h| Hit::on(h.prim, h.t, &prims[h.prim], ray))
+}
+
+/// Every hit with its coordinates on its primitive, `prims` in input order.
+pub(crate) fn placed_all<P: Primitive>(
+    hits: Vec<Hit>,
+    prims: &[P],
+    ray: &crate::Ray<P::Point>,
+) -> Vec<Hit> {
+    hits.into_iter()
+        .map(|h| Hit::on(h.prim, h.t, &prims[h.prim], ray))
+        .collect()
+}
+
+/// [`placed`] for a traced answer.
+pub(crate) fn placed_traced<P: Primitive>(
+    mut traced: Traced<Option<Hit>>,
+    prims: &[P],
+    ray: &crate::Ray<P::Point>,
+) -> Traced<Option<Hit>> {
+    traced.answer = placed(traced.answer, prims, ray);
+    traced
+}
+
+/// [`placed_all`] for a traced answer.
+pub(crate) fn placed_all_traced<P: Primitive>(
+    traced: Traced<Vec<Hit>>,
+    prims: &[P],
+    ray: &crate::Ray<P::Point>,
+) -> Traced<Vec<Hit>> {
+    Traced {
+        answer: placed_all(traced.answer, prims, ray),
+        cost: traced.cost,
+    }
 }
 
 /// A nearest primitive: which one, its point nearest to the query point, and the distance.
@@ -121,7 +204,7 @@ impl HitTracker {
             Some(best) => t < best.t || (t == best.t && prim < best.prim),
         };
         if better && t >= 0.0 {
-            self.best = Some(Hit { prim, t });
+            self.best = Some(Hit::unplaced(prim, t));
             return true;
         }
         false

@@ -1,7 +1,7 @@
 //! Every query of a tree against brute force, and costs against events.
 
 use bvhlab::prelude::*;
-use bvhlab::structure::bvh::{Bvh, BvhOptions, NodeVolume};
+use bvhlab::structure::bvh::{Bvh, BvhOptions, NodeVolume, SplitRecord};
 use bvhlab::structure::{BruteForce, Event, Hit, RangeShape, Recorder};
 use bvhlab::{Aabb, Ray, Sphere};
 use rand::RngExt;
@@ -54,15 +54,36 @@ where
         prims.len(),
         "{name}: {stats:?}"
     );
-    let brute = BruteForce::build(prims);
+    let rays_hit = check_tree(&name, &bvh, prims, &log, rng, budget);
+    Checked { bvh, rays_hit }
+}
 
+/// Checks every query of a built (or refitted) tree over `prims` against brute force on
+/// `prims`, as [`check_scene`] does; `log` (may be empty) aims some rays and points at split
+/// planes. Returns how many rays hit something.
+///
+/// # Panics
+/// On the first disagreement, naming the tree and the query.
+pub fn check_tree<B, P>(
+    name: &str,
+    bvh: &Bvh<B, P>,
+    prims: &[P],
+    log: &[SplitRecord],
+    rng: &mut ChaCha8Rng,
+    budget: Budget,
+) -> usize
+where
+    B: NodeVolume<Point = P::Point>,
+    P: Primitive,
+{
+    let brute = BruteForce::build(prims);
     let mut rays_hit = 0;
-    for (i, ray) in rays_for(rng, prims, &log, budget.rays).iter().enumerate() {
+    for (i, ray) in rays_for(rng, prims, log, budget.rays).iter().enumerate() {
         let t_max = [f32::INFINITY, rng.random_range(0.0f32..1.5), 0.0][i % 3];
-        rays_hit += usize::from(check_ray(&name, &bvh, &brute, ray, t_max, i % 4 == 0));
+        rays_hit += usize::from(check_ray(name, bvh, &brute, ray, t_max, i % 4 == 0));
     }
     let (_, size) = scene_box(prims);
-    for (i, point) in points_for(rng, prims, &log, budget.points)
+    for (i, point) in points_for(rng, prims, log, budget.points)
         .into_iter()
         .enumerate()
     {
@@ -91,7 +112,7 @@ where
                 bvh.k_nearest(point, 3),
                 "{name}: observing changed it"
             );
-            assert_counts(&name, &recorder, traced.cost);
+            assert_counts(name, &recorder, traced.cost);
         }
         let ball = RangeShape::Ball(Sphere::new(point, rng.random_range(0.0..0.3) * size));
         assert_eq!(
@@ -113,7 +134,7 @@ where
         "{name}: a NaN point has no nearest"
     );
     assert!(bvh.k_nearest(P::Point::ZERO, 0).is_empty(), "{name}: k = 0");
-    Checked { bvh, rays_hit }
+    rays_hit
 }
 
 /// A tree that passed [`check_scene`], and how many of its rays hit something (so that a
@@ -182,6 +203,12 @@ where
         );
     }
     let any = bvh.ray_any_hit(ray, t_max);
+    // The unobserved any hit takes the fast walk: it must stop where the observed one does.
+    assert_eq!(
+        any,
+        bvh.ray_any_hit_observed(ray, t_max, &mut ()).answer,
+        "{name}: the fast any hit differs from the observed one, {ray:?}, t_max {t_max}"
+    );
     if all_want.iter().any(plausible) {
         assert!(
             any.is_some(),

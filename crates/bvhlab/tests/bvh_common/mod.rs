@@ -10,7 +10,9 @@ pub mod checks;
 pub mod rays;
 pub mod scenes;
 
-pub use checks::{Budget, Checked, assert_counts, check_collide, check_ray, check_scene};
+pub use checks::{
+    Budget, Checked, assert_counts, check_collide, check_ray, check_scene, check_tree,
+};
 pub use rays::{plausible_hit, points_for, rays_for};
 
 use bvhlab::Aabb;

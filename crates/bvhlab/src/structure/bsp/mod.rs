@@ -28,6 +28,7 @@ use super::plane_tree::{self, Crossing, PlaneNode, PlaneTree};
 use super::{
     Hit, Nearest, NodeId, Observer, RangeShape, SpatialIndex, Stats, Traced, ValidationError,
 };
+use crate::structure::query::{placed_all_traced, placed_traced};
 use crate::volume::Aabb;
 use crate::{Primitive, Ray};
 
@@ -214,7 +215,11 @@ impl<P: Primitive> SpatialIndex for BspTree<P> {
         t_max: f32,
         observer: &mut O,
     ) -> Traced<Option<Hit>> {
-        plane_tree::ray::first_hit(self, ray, t_max, observer)
+        placed_traced(
+            plane_tree::ray::first_hit(self, ray, t_max, observer),
+            &self.prims,
+            ray,
+        )
     }
 
     fn ray_any_hit_observed<O: Observer<P::Point>>(
@@ -223,7 +228,11 @@ impl<P: Primitive> SpatialIndex for BspTree<P> {
         t_max: f32,
         observer: &mut O,
     ) -> Traced<Option<Hit>> {
-        plane_tree::ray::any_hit(self, ray, t_max, observer)
+        placed_traced(
+            plane_tree::ray::any_hit(self, ray, t_max, observer),
+            &self.prims,
+            ray,
+        )
     }
 
     fn ray_all_hits_observed<O: Observer<P::Point>>(
@@ -232,7 +241,11 @@ impl<P: Primitive> SpatialIndex for BspTree<P> {
         t_max: f32,
         observer: &mut O,
     ) -> Traced<Vec<Hit>> {
-        plane_tree::ray::all_hits(self, ray, t_max, observer)
+        placed_all_traced(
+            plane_tree::ray::all_hits(self, ray, t_max, observer),
+            &self.prims,
+            ray,
+        )
     }
 
     fn k_nearest_observed<O: Observer<P::Point>>(

@@ -91,6 +91,8 @@
 //!   `fast_nearest.rs`), the slides' recursions (`lecture.rs`) and the stack (`stack.rs`).
 //! - `wide/`: [`Bvh4`], the 4-wide copy of an AABB tree (`layout.rs`), with its own
 //!   first-hit and closest-point walks (`ray.rs`, `nearest.rs`) and stack (`stack.rs`).
+//! - `refit.rs`: [`Bvh::refit`] after the primitives moved (Wald, Boulos and Shirley 2007),
+//!   its [`RefitReport`] and [`Bvh::needs_rebuild`]; [`Bvh4::refit`] is in `wide/refit.rs`.
 //! - `validate.rs` (the invariants) and `tests.rs` (unit tests that need private fields).
 //!
 //! ## Which walk each call runs
@@ -99,7 +101,8 @@
 //! | --- | --- |
 //! | [`ray_first_hit_observed`](SpatialIndex::ray_first_hit_observed) | `walk/ray.rs` (`first_hit`) |
 //! | [`ray_first_hit`](SpatialIndex::ray_first_hit) | `walk/fast_ray.rs`, a walk of its own |
-//! | [`ray_any_hit_observed`](SpatialIndex::ray_any_hit_observed), [`ray_any_hit`](SpatialIndex::ray_any_hit) | `walk/ray.rs` (`any_hit`) |
+//! | [`ray_any_hit_observed`](SpatialIndex::ray_any_hit_observed) | `walk/ray.rs` (`any_hit`) |
+//! | [`ray_any_hit`](SpatialIndex::ray_any_hit) | `walk/fast_ray.rs`, the first-hit walk stopping at the first hit |
 //! | [`ray_all_hits_observed`](SpatialIndex::ray_all_hits_observed), [`ray_all_hits`](SpatialIndex::ray_all_hits) | `walk/ray.rs` (`all_hits`) |
 //! | [`closest_point`](SpatialIndex::closest_point), [`checked_closest_point`](SpatialIndex::checked_closest_point) | `walk/fast_nearest.rs`, a walk of its own |
 //! | [`k_nearest_observed`](SpatialIndex::k_nearest_observed), [`k_nearest`](SpatialIndex::k_nearest) (for every `k`, 1 too) | `walk/nearest.rs` |
@@ -111,6 +114,8 @@
 //! | [`Bvh4::closest_point`] | `wide/nearest.rs` |
 //! | [`stats`](SpatialIndex::stats), [`Bvh::depths`] | `layout/stats.rs` |
 //! | [`validate`](SpatialIndex::validate) | `validate.rs` |
+//! | [`Bvh::refit`], [`Bvh::needs_rebuild`] | `refit.rs` |
+//! | [`Bvh4::refit`], [`Bvh4::needs_rebuild`], [`Bvh4::validate`] | `wide/refit.rs`, `wide/validate.rs` |
 //! | [`Bvh::build`], [`Bvh::with_options`]: an AABB tree with [`SplitMethod::BinnedSah`] | `build/fast.rs`, in one go |
 //! | [`Bvh::build`], [`Bvh::with_options`]: any other tree; [`Bvh::build_observed`] | `build/mod.rs` and `node_stages.rs`, the resumable builder run to the end |
 //! | [`BvhBuild::step`], [`BvhBuild::finish`] | the same builder, a budget at a time (`build/job.rs`) |
@@ -120,9 +125,9 @@
 //! Every plain form not named above is its `_observed` form with the no-op observer `()`
 //! (the defaults of [`SpatialIndex`]): the observer costs nothing there (`()`'s
 //! [`Observer::on`] is empty and always inlined), but the walk still keeps what its reports
-//! would need and counts its [`QueryCost`](super::QueryCost). Two plain forms do not: the
-//! plain [`ray_first_hit`](SpatialIndex::ray_first_hit) and
-//! [`closest_point`](SpatialIndex::closest_point), which nobody watches, take walks of their
+//! would need and counts its [`QueryCost`](super::QueryCost). Three plain forms do not: the
+//! plain [`ray_first_hit`](SpatialIndex::ray_first_hit), [`ray_any_hit`](SpatialIndex::ray_any_hit)
+//! and [`closest_point`](SpatialIndex::closest_point), which nobody watches, take walks of their
 //! own that skip what only the lab needs (each waiting node's depth, the counters, the order
 //! of reports, the k-best set): the nearer child is visited next without touching the stack,
 //! and only the farther waits. They answer exactly what the observed walks answer, bit for
@@ -135,6 +140,7 @@
 
 mod build;
 pub mod layout;
+mod refit;
 mod validate;
 pub mod volume;
 mod walk;
@@ -147,12 +153,14 @@ pub use build::job::{BuildPhase, BuildProgress, BvhBuild};
 pub use build::options::{BvhOptions, MAX_DEPTH, SphereFit, SplitMethod};
 pub use build::split_log::SplitRecord;
 pub use layout::{Bvh, BvhNode};
+pub use refit::{RefitError, RefitReport};
 pub use volume::{NodeVolume, PreparedRange, PreparedRay, SLACK, TINY};
 pub use wide::{Bvh4, Bvh4Node, WIDTH};
 
 use super::{
     Hit, Nearest, Observer, PointOf, RangeShape, SpatialIndex, Stats, Traced, ValidationError,
 };
+use crate::structure::query::{placed, placed_all_traced, placed_traced};
 use crate::volume::{Aabb, Obb, Sphere};
 use crate::{Primitive, Ray};
 
@@ -218,14 +226,14 @@ where
         t_max: f32,
         observer: &mut O,
     ) -> Traced<Option<Hit>> {
-        self.first_hit(ray, t_max, observer)
+        placed_traced(self.first_hit(ray, t_max, observer), &self.prims, ray)
     }
 
     /// The unobserved walk (`walk/fast_ray.rs`): the observed one's answer, without its
     /// bookkeeping.
     #[inline]
     fn ray_first_hit(&self, ray: &Ray<PointOf<Self>>, t_max: f32) -> Option<Hit> {
-        self.first_hit_fast(ray, t_max)
+        placed(self.first_hit_fast(ray, t_max), &self.prims, ray)
     }
 
     /// The unobserved walk (`walk/fast_nearest.rs`): the observed one's answer, without its
@@ -235,13 +243,20 @@ where
         self.closest_point_fast(point)
     }
 
+    /// The unobserved walk (`walk/fast_ray.rs`, stopping at the first hit): the observed
+    /// one's answer, without its bookkeeping.
+    #[inline]
+    fn ray_any_hit(&self, ray: &Ray<PointOf<Self>>, t_max: f32) -> Option<Hit> {
+        placed(self.any_hit_fast(ray, t_max), &self.prims, ray)
+    }
+
     fn ray_any_hit_observed<O: Observer<PointOf<Self>>>(
         &self,
         ray: &Ray<PointOf<Self>>,
         t_max: f32,
         observer: &mut O,
     ) -> Traced<Option<Hit>> {
-        self.any_hit(ray, t_max, observer)
+        placed_traced(self.any_hit(ray, t_max, observer), &self.prims, ray)
     }
 
     fn ray_all_hits_observed<O: Observer<PointOf<Self>>>(
@@ -250,7 +265,7 @@ where
         t_max: f32,
         observer: &mut O,
     ) -> Traced<Vec<Hit>> {
-        self.all_hits(ray, t_max, observer)
+        placed_all_traced(self.all_hits(ray, t_max, observer), &self.prims, ray)
     }
 
     fn k_nearest_observed<O: Observer<PointOf<Self>>>(

@@ -5,6 +5,7 @@ use super::layout::is_indexable;
 use super::volume::NodeVolume;
 use super::{Bvh, MAX_DEPTH};
 use crate::Primitive;
+use crate::primitive::check_enclosed_by_vertices;
 use crate::structure::ValidationError;
 
 fn fail<T>(message: String) -> Result<T, ValidationError> {
@@ -17,7 +18,8 @@ where
     P: Primitive,
 {
     /// Checks, in this order: the leaf-order primitives are copies of distinct input
-    /// primitives, and exactly the indexable ones (all vertices finite); every node is
+    /// primitives, and exactly the indexable ones (all vertices finite), each keeping the
+    /// [`Primitive`] contract's enclosure ([`check_enclosed_by_vertices`]); every node is
     /// reached once from the root by child links that point forward, inner nodes have two
     /// children, the tree is at most [`MAX_DEPTH`] deep; the leaves' ranges cover leaf order
     /// exactly once and each subtree's primitives are contiguous (counts add up); every node's
@@ -52,6 +54,11 @@ where
             }
         }
         for (i, prim) in self.prims.iter().enumerate() {
+            if let Err(why) = check_enclosed_by_vertices(prim) {
+                return fail(format!(
+                    "primitive {i} breaks the Primitive contract: {why}"
+                ));
+            }
             if seen[i] != is_indexable(prim) {
                 let what = if seen[i] {
                     "non-finite but indexed"

@@ -56,6 +56,7 @@ pub use layout::{CellCoords, Grid, GridOptions};
 use super::{
     Hit, Nearest, Observer, PointOf, RangeShape, SpatialIndex, Stats, Traced, ValidationError,
 };
+use crate::structure::query::{placed_all_traced, placed_traced};
 use crate::{Primitive, Ray};
 
 impl<P: Primitive> SpatialIndex for Grid<P> {
@@ -76,7 +77,7 @@ impl<P: Primitive> SpatialIndex for Grid<P> {
         t_max: f32,
         observer: &mut O,
     ) -> Traced<Option<Hit>> {
-        self.walk_first_hit(ray, t_max, observer)
+        placed_traced(self.walk_first_hit(ray, t_max, observer), &self.prims, ray)
     }
 
     fn ray_any_hit_observed<O: Observer<PointOf<Self>>>(
@@ -85,7 +86,7 @@ impl<P: Primitive> SpatialIndex for Grid<P> {
         t_max: f32,
         observer: &mut O,
     ) -> Traced<Option<Hit>> {
-        self.walk_any_hit(ray, t_max, observer)
+        placed_traced(self.walk_any_hit(ray, t_max, observer), &self.prims, ray)
     }
 
     fn ray_all_hits_observed<O: Observer<PointOf<Self>>>(
@@ -94,7 +95,7 @@ impl<P: Primitive> SpatialIndex for Grid<P> {
         t_max: f32,
         observer: &mut O,
     ) -> Traced<Vec<Hit>> {
-        self.walk_all_hits(ray, t_max, observer)
+        placed_all_traced(self.walk_all_hits(ray, t_max, observer), &self.prims, ray)
     }
 
     fn k_nearest_observed<O: Observer<PointOf<Self>>>(

@@ -114,10 +114,7 @@ impl<P: Primitive> Grid<P> {
         for &i in &self.unplaced {
             if let Some(t) = probe.test(i, observer) {
                 return Traced {
-                    answer: Some(Hit {
-                        prim: i as usize,
-                        t,
-                    }),
+                    answer: Some(Hit::unplaced(i as usize, t)),
                     cost: probe.cost,
                 };
             }
@@ -131,10 +128,7 @@ impl<P: Primitive> Grid<P> {
             enter(&visit, &mut probe, observer);
             for &i in self.cell_primitives(visit.cell as usize) {
                 if let Some(t) = probe.test(i, observer) {
-                    found = Some(Hit {
-                        prim: i as usize,
-                        t,
-                    });
+                    found = Some(Hit::unplaced(i as usize, t));
                     return ControlFlow::Break(());
                 }
             }
@@ -157,10 +151,7 @@ impl<P: Primitive> Grid<P> {
         let mut hits = Vec::new();
         for &i in &self.unplaced {
             if let Some(t) = probe.test(i, observer) {
-                hits.push(Hit {
-                    prim: i as usize,
-                    t,
-                });
+                hits.push(Hit::unplaced(i as usize, t));
             }
         }
         let tol = RayTolerance::new(ray, &self.bounds);
@@ -172,10 +163,7 @@ impl<P: Primitive> Grid<P> {
             enter(&visit, &mut probe, observer);
             for &i in self.cell_primitives(visit.cell as usize) {
                 if let Some(t) = probe.test(i, observer) {
-                    hits.push(Hit {
-                        prim: i as usize,
-                        t,
-                    });
+                    hits.push(Hit::unplaced(i as usize, t));
                 }
             }
             ControlFlow::Continue(())

@@ -30,6 +30,7 @@ use super::plane_tree::{self, Crossing, PlaneNode, PlaneTree, SLACK, axis_crossi
 use super::{
     Hit, Nearest, NodeId, Observer, RangeShape, SpatialIndex, Stats, Traced, ValidationError,
 };
+use crate::structure::query::{placed_all_traced, placed_traced};
 use crate::volume::Aabb;
 use crate::{Primitive, Ray, Vector};
 
@@ -236,7 +237,11 @@ impl<P: Primitive> SpatialIndex for KdTree<P> {
         t_max: f32,
         observer: &mut O,
     ) -> Traced<Option<Hit>> {
-        plane_tree::ray::first_hit(self, ray, t_max, observer)
+        placed_traced(
+            plane_tree::ray::first_hit(self, ray, t_max, observer),
+            &self.prims,
+            ray,
+        )
     }
 
     fn ray_any_hit_observed<O: Observer<P::Point>>(
@@ -245,7 +250,11 @@ impl<P: Primitive> SpatialIndex for KdTree<P> {
         t_max: f32,
         observer: &mut O,
     ) -> Traced<Option<Hit>> {
-        plane_tree::ray::any_hit(self, ray, t_max, observer)
+        placed_traced(
+            plane_tree::ray::any_hit(self, ray, t_max, observer),
+            &self.prims,
+            ray,
+        )
     }
 
     fn ray_all_hits_observed<O: Observer<P::Point>>(
@@ -254,7 +263,11 @@ impl<P: Primitive> SpatialIndex for KdTree<P> {
         t_max: f32,
         observer: &mut O,
     ) -> Traced<Vec<Hit>> {
-        plane_tree::ray::all_hits(self, ray, t_max, observer)
+        placed_all_traced(
+            plane_tree::ray::all_hits(self, ray, t_max, observer),
+            &self.prims,
+            ray,
+        )
     }
 
     fn k_nearest_observed<O: Observer<P::Point>>(

@@ -268,10 +268,7 @@ pub(crate) fn any_hit<T: PlaneTree, O: Observer<PointOfTree<T>>>(
             if let Some(t) = walk.test(prim, t_max, &mut mailbox, observer) {
                 walk.prune_rest(|_| PruneReason::AlreadyHit, observer);
                 return Traced {
-                    answer: Some(Hit {
-                        prim: prim as usize,
-                        t,
-                    }),
+                    answer: Some(Hit::unplaced(prim as usize, t)),
                     cost: walk.cost,
                 };
             }
@@ -296,10 +293,7 @@ pub(crate) fn all_hits<T: PlaneTree, O: Observer<PointOfTree<T>>>(
     while let Some((_, prims)) = walk.next_leaf(t_max, observer) {
         for &prim in prims {
             if let Some(t) = walk.test(prim, t_max, &mut mailbox, observer) {
-                hits.push(Hit {
-                    prim: prim as usize,
-                    t,
-                });
+                hits.push(Hit::unplaced(prim as usize, t));
             }
         }
     }

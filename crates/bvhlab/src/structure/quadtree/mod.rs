@@ -55,6 +55,7 @@ pub use layout::{MAX_DEPTH, Orthtree, OrthtreeCell, OrthtreeOptions};
 use super::{
     Hit, Nearest, Observer, PointOf, RangeShape, SpatialIndex, Stats, Traced, ValidationError,
 };
+use crate::structure::query::{placed_all_traced, placed_traced};
 use crate::{Primitive, Ray};
 
 impl<P: Primitive> SpatialIndex for Orthtree<P> {
@@ -75,7 +76,7 @@ impl<P: Primitive> SpatialIndex for Orthtree<P> {
         t_max: f32,
         observer: &mut O,
     ) -> Traced<Option<Hit>> {
-        self.walk_first_hit(ray, t_max, observer)
+        placed_traced(self.walk_first_hit(ray, t_max, observer), &self.prims, ray)
     }
 
     fn ray_any_hit_observed<O: Observer<PointOf<Self>>>(
@@ -84,7 +85,7 @@ impl<P: Primitive> SpatialIndex for Orthtree<P> {
         t_max: f32,
         observer: &mut O,
     ) -> Traced<Option<Hit>> {
-        self.walk_any_hit(ray, t_max, observer)
+        placed_traced(self.walk_any_hit(ray, t_max, observer), &self.prims, ray)
     }
 
     fn ray_all_hits_observed<O: Observer<PointOf<Self>>>(
@@ -93,7 +94,7 @@ impl<P: Primitive> SpatialIndex for Orthtree<P> {
         t_max: f32,
         observer: &mut O,
     ) -> Traced<Vec<Hit>> {
-        self.walk_all_hits(ray, t_max, observer)
+        placed_all_traced(self.walk_all_hits(ray, t_max, observer), &self.prims, ray)
     }
 
     fn k_nearest_observed<O: Observer<PointOf<Self>>>(

@@ -98,10 +98,7 @@ impl<'a, P: Primitive> LeafVisitor<'a, P> for AnyHit<'a, P> {
     ) -> ControlFlow<()> {
         for &i in prims {
             if let Some(t) = self.probe.test(i, observer) {
-                self.found = Some(Hit {
-                    prim: i as usize,
-                    t,
-                });
+                self.found = Some(Hit::unplaced(i as usize, t));
                 return ControlFlow::Break(());
             }
         }
@@ -130,10 +127,7 @@ impl<'a, P: Primitive> LeafVisitor<'a, P> for AllHits<'a, P> {
     ) -> ControlFlow<()> {
         for &i in prims {
             if let Some(t) = self.probe.test(i, observer) {
-                self.hits.push(Hit {
-                    prim: i as usize,
-                    t,
-                });
+                self.hits.push(Hit::unplaced(i as usize, t));
             }
         }
         ControlFlow::Continue(())

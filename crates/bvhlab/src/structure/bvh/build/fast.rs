@@ -124,7 +124,9 @@ where
         leaf_prims: parts.leaf_prims,
         leaf_ids: parts.leaf_ids,
         options: *options,
+        build_sah_cost: None,
     }
+    .with_build_cost()
 }
 
 /// What a tree is made of besides its input and options (a [`Bvh4`](super::super::Bvh4)

@@ -362,7 +362,9 @@ where
             leaf_prims: self.leaf_prims,
             leaf_ids: self.leaf_ids,
             options: self.options,
-        };
+            build_sah_cost: None,
+        }
+        .with_build_cost();
         (bvh, self.log.unwrap_or_default())
     }
 

@@ -81,6 +81,8 @@ pub struct Bvh<B, P: Primitive> {
     pub(super) leaf_ids: Vec<u32>,
     /// What the tree was built with.
     pub(super) options: BvhOptions,
+    /// The SAH cost when the tree was built, for [`Bvh::needs_rebuild`] after refits.
+    pub(super) build_sah_cost: Option<f32>,
 }
 
 impl<B, P: Primitive> Bvh<B, P> {
@@ -118,6 +120,12 @@ impl<B, P: Primitive> Bvh<B, P> {
     /// The options the tree was built with.
     pub fn options(&self) -> &BvhOptions {
         &self.options
+    }
+
+    /// The SAH cost the tree had when it was built (before any [`refit`](Bvh::refit)); see
+    /// [`Stats::sah_cost`](crate::structure::Stats::sah_cost).
+    pub fn build_sah_cost(&self) -> Option<f32> {
+        self.build_sah_cost
     }
 
     /// How many input primitives were left out because a coordinate is NaN or infinite.

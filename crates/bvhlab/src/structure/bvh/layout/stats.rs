@@ -45,11 +45,23 @@ where
             primitives: self.prims.len(),
             references: leaves().map(|n| n.count as usize).sum(),
             memory_bytes,
-            sah_cost: sah_cost(
-                self.nodes
-                    .iter()
-                    .map(|n| (n.volume, n.is_leaf().then_some(n.count as usize))),
-            ),
+            sah_cost: self.sah_cost(),
         }
+    }
+
+    /// The SAH cost of the node volumes now (after a [`refit`](Bvh::refit), of the refitted
+    /// ones): [`Stats::sah_cost`].
+    pub fn sah_cost(&self) -> Option<f32> {
+        sah_cost(
+            self.nodes
+                .iter()
+                .map(|n| (n.volume, n.is_leaf().then_some(n.count as usize))),
+        )
+    }
+
+    /// The tree with its build-time SAH cost recorded (the builders' last step).
+    pub(in crate::structure::bvh) fn with_build_cost(mut self) -> Self {
+        self.build_sah_cost = self.sah_cost();
+        self
     }
 }

@@ -99,6 +99,17 @@ pub trait NodeVolume: BoundingVolume + Copy + Send + Sync + 'static {
         self.overlaps(other)
     }
 
+    /// The volume of an inner node around its two children's volumes, for a
+    /// [`refit`](super::Bvh::refit): it must contain both. The default is
+    /// [`merge`](BoundingVolume::merge) (exact for boxes); spheres and OBBs grow it as
+    /// [`fit`](Self::fit) grows theirs. Each inner node then costs one call, so a refit is
+    /// linear in the nodes, where fitting every node to its primitives' vertices again would
+    /// cost their count per level.
+    fn enclose(first: &Self, second: &Self, options: &BvhOptions) -> Self {
+        let _ = options;
+        first.merge(second)
+    }
+
     /// Whether the volume contains the primitive: its box (for a box) or its vertices.
     fn contains_primitive<P: Primitive<Point = Self::Point>>(&self, prim: &P) -> bool {
         prim.vertices().all(|v| self.contains(v))

@@ -37,6 +37,21 @@ impl<V: Vector> NodeVolume for Obb<V> {
         grown
     }
 
+    /// The PCA box of both children's corners, fitted and grown as [`fit`](Self::fit)
+    /// fits a node to its vertices (a box around the corners holds both boxes, so every
+    /// primitive below).
+    fn enclose(first: &Self, second: &Self, options: &BvhOptions) -> Self {
+        if second.is_empty() {
+            return *first;
+        }
+        if first.is_empty() {
+            return *second;
+        }
+        let corners: Vec<V> = first.corners().chain(second.corners()).collect();
+        let bounds = corners.iter().fold(Aabb::EMPTY, |b, &c| b.grown(c));
+        Self::fit(&bounds, &corners, options)
+    }
+
     /// The slab test in the box's frame ([`Obb::slab_test`]) of the box grown by the ray's
     /// slack, its far end grown by [`GROW`] as for boxes.
     fn ray_entry(&self, ray: &PreparedRay<V>) -> Option<(f32, f32)> {

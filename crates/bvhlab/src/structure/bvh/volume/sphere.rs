@@ -41,6 +41,21 @@ impl<V: Vector> NodeVolume for Sphere<V> {
         grown
     }
 
+    /// The smallest sphere around both ([`merge`](BoundingVolume::merge), which rounds its
+    /// radius up), grown by [`SLACK`](super::SLACK) of its scale as [`fit`](Self::fit)
+    /// grows a fitted one. Looser than a sphere fitted to the node's vertices, which is the
+    /// price of a refit linear in the nodes.
+    fn enclose(first: &Self, second: &Self, _options: &BvhOptions) -> Self {
+        let merged = first.merge(second);
+        if merged.is_empty() || merged.radius == f32::INFINITY {
+            return merged;
+        }
+        Sphere::new(
+            merged.center,
+            merged.radius + growth(merged.center, merged.radius),
+        )
+    }
+
     /// The ray-sphere quadratic `|e + t d|² = r²` (e: origin relative to the centre, `r`
     /// grown by the ray's slack), in `f64` with `e` formed in `f64` (exact for `f32`
     /// inputs), solved without cancellation (Press et al., "Numerical Recipes", §5.6).

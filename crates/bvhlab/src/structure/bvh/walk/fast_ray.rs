@@ -1,5 +1,5 @@
-//! The unobserved ray first hit: the same walk as `ray.rs`, without the bookkeeping
-//! that only the lab needs.
+//! The unobserved ray first hit and any hit: the same walk as `ray.rs`, without the
+//! bookkeeping that only the lab needs.
 //!
 //! The observed walk (`ray.rs`) keeps, per waiting node, its depth for `EnterNode`,
 //! counts every test for [`QueryCost`](crate::structure::QueryCost) and pushes both
@@ -14,6 +14,11 @@
 //! is skipped only when the ray enters it beyond the best hit times [`GROW`]), and the best
 //! hit is the least `(t, index)` over every primitive not pruned, whatever the order they
 //! are met in ([`HitTracker`]).
+//!
+//! The any-hit walk is the same walk stopping at the first primitive hit within `t_max`.
+//! The observed any-hit walk visits nodes in the same order (nearer entry first, the first
+//! child on a tie) with the same constant limit `t_max`, and tests a leaf's primitives in
+//! leaf order, so both stop at the same primitive: the same answer, bit for bit.
 
 use crate::structure::bvh::volume::{GROW, NodeVolume, PreparedRay};
 use crate::structure::bvh::{Bvh, MAX_DEPTH};
@@ -35,6 +40,22 @@ where
         ray: &Ray<P::Point>,
         t_max: f32,
     ) -> Option<Hit> {
+        self.walk_fast::<false>(ray, t_max)
+    }
+
+    /// Some hit with `0 <= t <= t_max` (none for a NaN `t_max`): what
+    /// `any_hit(ray, t_max, &mut ())` answers, found faster.
+    pub(in crate::structure::bvh) fn any_hit_fast(
+        &self,
+        ray: &Ray<P::Point>,
+        t_max: f32,
+    ) -> Option<Hit> {
+        self.walk_fast::<true>(ray, t_max)
+    }
+
+    /// The walk; `ANY` stops at the first hit met instead of keeping the nearest.
+    #[inline]
+    fn walk_fast<const ANY: bool>(&self, ray: &Ray<P::Point>, t_max: f32) -> Option<Hit> {
         if self.nodes.is_empty() || t_max.is_nan() {
             return None;
         }
@@ -56,7 +77,18 @@ where
             let node = &self.nodes[current as usize];
             if node.is_leaf() {
                 let range = node.leaf_range();
-                if best.offer_leaf(&self.leaf_prims[range.clone()], &self.leaf_ids[range], ray) {
+                if ANY {
+                    let leaf = self.leaf_prims[range.clone()].iter();
+                    for (prim, &id) in leaf.zip(&self.leaf_ids[range.clone()]) {
+                        if let Some(t) = prim.ray_hit(ray).filter(|&t| t <= t_max) {
+                            return Some(Hit::unplaced(id as usize, t));
+                        }
+                    }
+                } else if best.offer_leaf(
+                    &self.leaf_prims[range.clone()],
+                    &self.leaf_ids[range],
+                    ray,
+                ) {
                     limit = best.limit();
                 }
             } else {

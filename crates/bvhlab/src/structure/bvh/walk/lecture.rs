@@ -19,6 +19,7 @@
 
 use crate::structure::bvh::Bvh;
 use crate::structure::bvh::volume::{GROW, NodeVolume, PreparedRay, query_slack};
+use crate::structure::query::placed;
 use crate::structure::{
     Event, Hit, HitTracker, Nearest, NearestSet, NodeId, Observer, PrimitiveResult, PruneAt,
     PruneReason, QueryCost, Traced,
@@ -63,7 +64,7 @@ where
             query.intersect(0, 0)
         };
         Traced {
-            answer,
+            answer: placed(answer, &self.prims, ray),
             cost: query.cost,
         }
     }

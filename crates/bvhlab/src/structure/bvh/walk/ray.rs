@@ -117,10 +117,7 @@ impl<P: Primitive> RayVisitor<P> for AnyHit {
     ) -> bool {
         for (prim, id) in leaf.iter() {
             if let Some(t) = test((prim, id), ray, self.t_max, observer, cost) {
-                self.found = Some(Hit {
-                    prim: id as usize,
-                    t,
-                });
+                self.found = Some(Hit::unplaced(id as usize, t));
                 return true;
             }
         }
@@ -146,10 +143,7 @@ impl<P: Primitive> RayVisitor<P> for AllHits {
     ) -> bool {
         for (prim, id) in leaf.iter() {
             if let Some(t) = test((prim, id), ray, self.t_max, observer, cost) {
-                self.hits.push(Hit {
-                    prim: id as usize,
-                    t,
-                });
+                self.hits.push(Hit::unplaced(id as usize, t));
             }
         }
         false

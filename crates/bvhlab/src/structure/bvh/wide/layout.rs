@@ -80,7 +80,7 @@ impl Bvh4Node {
         Aabb::new(min, max)
     }
 
-    fn set_lane<V: Vector>(&mut self, lane: usize, volume: &Aabb<V>) {
+    pub(super) fn set_lane<V: Vector>(&mut self, lane: usize, volume: &Aabb<V>) {
         for axis in 0..V::DIM {
             self.planes[0][axis][lane] = volume.min.coord(axis);
             self.planes[1][axis][lane] = volume.max.coord(axis);
@@ -125,6 +125,10 @@ pub struct Bvh4<P: Primitive> {
     /// Wide levels from the root to the deepest node (1 for a root alone, 0 when empty):
     /// it sizes the walks' stacks.
     pub(super) depth: usize,
+    /// How many primitives the tree was built over (indexed or left out), for a refit.
+    pub(super) input_len: usize,
+    /// The SAH cost of the wide tree when it was built, for [`Bvh4::needs_rebuild`].
+    pub(super) build_sah_cost: Option<f32>,
 }
 
 impl<P: Primitive> Bvh4<P> {
@@ -148,7 +152,10 @@ impl<P: Primitive> Bvh4<P> {
             leaf_prims: parts.leaf_prims,
             leaf_ids: parts.leaf_ids,
             depth,
+            input_len: prims.len(),
+            build_sah_cost: None,
         }
+        .with_build_cost()
     }
 
     /// Collapses a built AABB tree (its boxes, leaves and primitives are kept; only inner
@@ -160,7 +167,10 @@ impl<P: Primitive> Bvh4<P> {
             leaf_prims: bvh.leaf_prims.clone(),
             leaf_ids: bvh.leaf_ids.clone(),
             depth,
+            input_len: bvh.prims.len(),
+            build_sah_cost: None,
         }
+        .with_build_cost()
     }
 
     /// The wide nodes; the root is node 0.

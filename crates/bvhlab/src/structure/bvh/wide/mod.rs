@@ -5,10 +5,14 @@
 //! - `ray.rs`: [`Bvh4::ray_first_hit`], four slab tests at once.
 //! - `nearest.rs`: [`Bvh4::closest_point`], four distance bounds at once.
 //! - `stack.rs`: the stack both walks share, sized per tree.
+//! - `refit.rs`: [`Bvh4::refit`] after the primitives moved, and the SAH cost it reports.
+//! - `validate.rs`: [`Bvh4::validate`], the invariants (every box inside its parent's).
 
 mod layout;
 mod nearest;
 mod ray;
+mod refit;
 mod stack;
+mod validate;
 
 pub use layout::{Bvh4, Bvh4Node, WIDTH};

@@ -129,11 +129,17 @@ impl<P: Primitive> Bvh4<P> {
         let mut stack = [Lane::ROOT; CAP];
         let mut len = 0;
         let mut current = Lane::ROOT;
+        // The leaf-order slot of the best hit's primitive, for its coordinates.
+        let mut best_slot = 0;
         loop {
             if current.count > 0 {
                 let range = current.child as usize..(current.child + current.count) as usize;
-                if best.offer_leaf(&self.leaf_prims[range.clone()], &self.leaf_ids[range], ray) {
+                let ids = &self.leaf_ids[range.clone()];
+                if best.offer_leaf(&self.leaf_prims[range.clone()], ids, ray) {
                     limit = best.limit();
+                    let prim = best.best().map_or(0, |h| h.prim);
+                    best_slot =
+                        range.start + ids.iter().position(|&id| id as usize == prim).unwrap_or(0);
                 }
             } else {
                 let node = &self.nodes[current.child as usize];
@@ -150,7 +156,9 @@ impl<P: Primitive> Bvh4<P> {
             // Pop the next waiting child the best hit has not moved in front of.
             loop {
                 if len == 0 {
-                    return best.best();
+                    return best
+                        .best()
+                        .map(|h| Hit::on(h.prim, h.t, &self.leaf_prims[best_slot], ray));
                 }
                 len -= 1;
                 let waiting = stack[len];
