@@ -26,6 +26,6 @@ mkdir -p dist
 wasm-bindgen --target web --no-typescript --out-dir dist --out-name app "$wasm"
 cp index.html web/main.js web/lab.css dist/
 # The example course page that embeds two labs, and the script it uses to drive them.
-cp web/embed.html web/embed.js web/embed.css web/bvhlab-embed.js dist/
+cp web/embed.html web/embed.js web/embed.css web/bvhlab-embed.js web/course.html web/course.js dist/
 
 if command -v node >/dev/null; then node web/size.mjs dist; fi

@@ -21,7 +21,7 @@ export class BvhLab {
     this.origin = origin;
     this.next = 1;
     this.waiting = new Map();
-    this.listeners = { panic: [] };
+    this.listeners = { panic: [], progress: [] };
     window.addEventListener('message', (event) => {
       if (event.source !== frame.contentWindow || event.origin !== origin) return;
       const data = event.data;
@@ -32,6 +32,11 @@ export class BvhLab {
         else reject(new Error(data.error));
       } else if (data?.bvhlab === 'panic') {
         for (const listener of this.listeners.panic) listener(data.message);
+      } else if (data?.bvhlab === 'progress') {
+        const { lesson, step, steps, goal_reached, goals_reached, goals } = data;
+        for (const listener of this.listeners.progress) {
+          listener({ lesson, step, steps, goal_reached, goals_reached, goals });
+        }
       }
     });
   }
@@ -62,6 +67,13 @@ export class BvhLab {
 
   /// Calls `listener(message)` if the lab stops on an error.
   onPanic(listener) { this.listeners.panic.push(listener); }
+
+  /// Calls `listener({lesson, step, steps, goal_reached, goals_reached, goals})` whenever
+  /// the student opens a lesson step or reaches its goal (steps count from 1).
+  onProgress(listener) { this.listeners.progress.push(listener); }
+
+  /// Opens lesson `name` at `step` (1 is its first).
+  goToLesson(lesson, step = 1) { return this.send({ type: 'go-to-lesson', lesson, step }); }
 
   report() { return this.send({ type: 'report' }); }
   loadScene(scene) { return this.send({ type: 'load-scene', scene }); }

@@ -12,6 +12,9 @@
 //    "Reload with my saved work" brings back the ray set just before; a broken scene file
 //    dropped then is refused with a message naming it, and the scene stays.
 // 4. The 3D half across a reload: mesh, structure, ray and answer come back.
+// 5. The example course page with a lesson (web/course.html): the lab posts its progress as
+//    the lesson opens, as the student's ray reaches the step's goal, and as the page moves it
+//    to the next step; the page lists it, and the lab's live region says the step and task.
 // Every page runs under the lab's Content-Security-Policy: any violation, console error (but
 // the panic's own) or request to another host fails the test. Screenshots: target/e2e/embed-*.png.
 
@@ -248,6 +251,43 @@ async function reload3d(context, summary) {
   await page.close();
 }
 
+async function courseProgress(context, summary) {
+  const page = await context.newPage();
+  const problems = [];
+  watch(page, problems);
+  const started = Date.now();
+  await page.goto(new URL('course.html', url).href);
+  await page.waitForFunction(() => window.courseReady === true, null, { timeout: TIMEOUT_MS });
+  await page.waitForFunction(() => window.progress.some((p) => p.lesson === 'slab-test' && p.step === 1),
+    null, { timeout: 20_000 });
+  summary.courseReady = seconds(Date.now() - started);
+  const opened = await page.evaluate(() => window.progress.at(-1));
+  check(!opened.goal_reached && opened.steps === 2 && opened.goals === 2 && opened.goals_reached === 0,
+    `the lesson opened, nothing done yet: ${JSON.stringify(opened)}`);
+  // What the student does (here through the scripting API): a ray straight up, x_d = 0,
+  // through the triangle at the bottom left.
+  const done = await page.evaluate(() => window.lab.setRay([2, -1], [0, 1]));
+  check(done.lesson?.goal_reached === true && done.query?.hit && done.query.agrees,
+    `the ray reaches the goal: ${JSON.stringify(done.lesson)} ${JSON.stringify(done.query)}`);
+  await page.waitForFunction(() => window.progress.some((p) => p.step === 1 && p.goal_reached),
+    null, { timeout: 10_000 });
+  const next = await page.evaluate(() => window.lab.goToLesson('slab-test', 2));
+  check(next.lesson?.step === 2 && !next.lesson.goal_reached && next.lesson.goals_reached === 1,
+    `the page moves the lab to step 2: ${JSON.stringify(next.lesson)}`);
+  await page.waitForFunction(() => window.progress.some((p) => p.step === 2), null, { timeout: 10_000 });
+  const refused = await page.evaluate(() => window.lab.goToLesson('slab-tset', 1).then(() => null, (e) => e.message));
+  check(refused?.includes('slab-test'), `an unknown lesson is refused with the names: ${refused}`);
+  const listed = await page.$$eval('#progress li', (items) => items.map((li) => li.textContent));
+  check(listed.some((t) => t.includes('slab-test, step 1 of 2: done (1 of 2')), `the page lists the step done: ${JSON.stringify(listed)}`);
+  const spoken = await page.frames()[1].evaluate(() => document.getElementById('lab-status').textContent);
+  check(spoken.includes('step 2 of 2') && spoken.includes('Task:'), `the live region says the step and task: ${spoken}`);
+  await page.screenshot({ path: join(outDir, 'embed-course.png') });
+  const csp = await violations(page);
+  check(csp.length === 0, `no CSP violations: ${JSON.stringify(csp)}`);
+  check(problems.length === 0, `no errors: ${JSON.stringify(problems)}`);
+  await page.close();
+}
+
 const profile = mkdtempSync(join(tmpdir(), 'bvhlab-e2e-embed-'));
 const context = await chromium.launchPersistentContext(profile, {
   executablePath,
@@ -261,7 +301,7 @@ const context = await chromium.launchPersistentContext(profile, {
 await recordViolations(context);
 const summary = {};
 let failed = 0;
-for (const [name, run] of [['two labs', twoLabs], ['origin check', originCheck], ['crash', crashAndReload], ['3D reload', reload3d]]) {
+for (const [name, run] of [['two labs', twoLabs], ['origin check', originCheck], ['crash', crashAndReload], ['3D reload', reload3d], ['course page', courseProgress]]) {
   try {
     await run(context, summary);
     console.log(`ok ${name}`);
@@ -272,5 +312,5 @@ for (const [name, run] of [['two labs', twoLabs], ['origin check', originCheck],
 }
 await context.close();
 for (const [key, value] of Object.entries(summary)) console.log(`  ${key}: ${value}`);
-console.log(`e2e embed: ${4 - failed} passed, ${failed} failed`);
+console.log(`e2e embed: ${5 - failed} passed, ${failed} failed`);
 process.exit(failed === 0 ? 0 : 1);

@@ -35,6 +35,8 @@ pub struct Report {
     /// The status line's message, when there is one (a file or link that could not be
     /// opened, and what was kept).
     pub message: Option<String>,
+    /// The lesson open, if any.
+    pub lesson: Option<crate::lessons::report::LessonReport>,
     /// The median interval between frames, in milliseconds.
     pub frame_ms: Option<f64>,
     /// The median CPU time per frame (UI, tessellation, draw calls), in milliseconds.
@@ -215,6 +217,7 @@ impl Report {
             ready: true,
             renderer: ui.renderer.clone(),
             message: lab.message().map(str::to_owned),
+            lesson: crate::lessons::report::LessonReport::of(lab),
             canvas: [r.min.x, r.min.y, r.max.x, r.max.y],
             scene: SceneReport {
                 shapes: two.scene.shapes().len(),
@@ -302,6 +305,10 @@ impl Report {
             && let Some((prim, _, d)) = n.nearest
         {
             let _ = write!(s, " Nearest primitive {prim} at distance {d:.3}.");
+        }
+        if let Some(lesson) = &self.lesson {
+            s.push(' ');
+            s.push_str(&lesson.text());
         }
         s
     }

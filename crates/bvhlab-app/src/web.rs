@@ -83,6 +83,7 @@ pub fn start() {
                         inbox,
                         origins,
                         announced: false,
+                        progress: None,
                     }))
                 }),
             )
@@ -237,6 +238,8 @@ struct WebLab {
     origins: Origins,
     /// Whether `ready` was posted to the embedding page.
     announced: bool,
+    /// The last lesson progress posted to the embedding page.
+    progress: Option<String>,
     /// The start-up failed and fell back to the default scene: keep the state saved earlier
     /// until the student changes something (taken after the first frame, which fits the view).
     hold: bool,
@@ -261,6 +264,19 @@ impl eframe::App for WebLab {
             self.announced = true;
             crate::embed::browser::announce(&self.origins, r#"{"bvhlab":"ready"}"#);
         }
+        // The course page hears of a step moved to or a goal reached.
+        let progress = self
+            .app
+            .report
+            .lesson
+            .as_ref()
+            .map(|l| l.progress_message());
+        if progress.is_some() && progress != self.progress {
+            if let Some(message) = &progress {
+                crate::embed::browser::announce(&self.origins, message);
+            }
+        }
+        self.progress = progress;
         if std::mem::take(&mut self.hold) {
             self.autosave.keep_current(self.app.lab());
         }

@@ -55,7 +55,11 @@ fn every_lesson_file_reads() {
     let mut unique = names.clone();
     unique.sort_unstable();
     unique.dedup();
-    assert_eq!(unique.len(), names.len(), "two lessons share a name: {names:?}");
+    assert_eq!(
+        unique.len(),
+        names.len(),
+        "two lessons share a name: {names:?}"
+    );
     // The README's table of address parameters names every lesson.
     let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../README.md"))
         .expect("the README");
@@ -64,7 +68,10 @@ fn every_lesson_file_reads() {
         .find(|l| l.starts_with("| `lesson` |"))
         .expect("the README's lesson parameter");
     for name in names {
-        assert!(row.contains(&format!("`{name}`")), "the README's row lacks {name}: {row}");
+        assert!(
+            row.contains(&format!("`{name}`")),
+            "the README's row lacks {name}: {row}"
+        );
     }
 }
 
@@ -129,7 +136,11 @@ fn a_reached_goal_stays_reached_and_moving_on_does_not_reach_the_next() {
     let solution = lesson.steps[0].solution.clone().expect("a solution");
     lab.apply_setup(&solution, "the solution");
     lab.apply(PlaybackAction::End.into()).expect("to the end");
-    assert!(lab.lesson().expect("open").reached_here(), "{}", goals_now(&lab));
+    assert!(
+        lab.lesson().expect("open").reached_here(),
+        "{}",
+        goals_now(&lab)
+    );
     lab.apply(open(1)).expect("the next step");
     let progress = lab.lesson().expect("open");
     assert_eq!(progress.reached, {
@@ -140,7 +151,8 @@ fn a_reached_goal_stays_reached_and_moving_on_does_not_reach_the_next() {
     // Back to the first step: it starts afresh, and stays marked.
     lab.apply(open(0)).expect("back");
     assert!(lab.lesson().expect("open").reached_here());
-    lab.apply(Action::Lesson(LessonAction::Close)).expect("closes");
+    lab.apply(Action::Lesson(LessonAction::Close))
+        .expect("closes");
     assert!(lab.lesson().is_none());
     let past = lesson.steps.len();
     let refused = lab.apply(open(past)).expect_err("no such step");
@@ -159,7 +171,11 @@ fn a_bad_lesson_file_is_refused_with_its_line() {
     assert!(format::read("03-test.toml", &format!("{head}{good_step}")).is_ok());
     let cases = [
         // A key the format does not have (a typo), on line 4.
-        (format!("{head}{good_step}txet = \"x\"\n"), "03-test.toml:", "txet"),
+        (
+            format!("{head}{good_step}txet = \"x\"\n"),
+            "03-test.toml:",
+            "txet",
+        ),
         // A setup the address would not read.
         (
             format!("{head}[[step]]\ntitle = \"A\"\nsetup = \"preset=kdtree\"\ntext = \"t\"\n"),
@@ -195,11 +211,18 @@ fn a_bad_lesson_file_is_refused_with_its_line() {
             "= or !=",
         ),
         (format!("{head}"), "03-test.toml:", "step"),
-        ("title = \"T\"\nsection = \n".to_owned(), "03-test.toml:2:", ""),
+        (
+            "title = \"T\"\nsection = \n".to_owned(),
+            "03-test.toml:2:",
+            "",
+        ),
     ];
     for (text, place, word) in cases {
         let said = refusal(&text);
-        assert!(said.starts_with(place), "{said:?} should start with {place:?}\n{text}");
+        assert!(
+            said.starts_with(place),
+            "{said:?} should start with {place:?}\n{text}"
+        );
         assert!(said.contains(word), "{said:?} should name {word:?}");
     }
 }
@@ -215,13 +238,18 @@ fn the_address_opens_a_lesson_at_its_step() {
     let problems = params.apply(&mut lab);
     assert!(problems.is_empty(), "{problems:?}");
     let progress = lab.lesson().expect("the lesson is open");
-    assert_eq!((progress.lesson.name.as_str(), progress.step), (lesson.name.as_str(), 1));
+    assert_eq!(
+        (progress.lesson.name.as_str(), progress.step),
+        (lesson.name.as_str(), 1)
+    );
 
     let mut lab = Lab::default();
     let problems = StartParams::parse("?lesson=slab-tset").apply(&mut lab);
     assert!(lab.lesson().is_none());
     assert!(
-        problems.iter().any(|p| p.contains("no lesson named") && p.contains("slab-test")),
+        problems
+            .iter()
+            .any(|p| p.contains("no lesson named") && p.contains("slab-test")),
         "{problems:?}"
     );
 }
@@ -233,7 +261,10 @@ fn the_lessons_panel_starts_a_lesson_and_moves_through_it() {
     assert!(common::shows(&h, "A lesson walks the lecture"));
     common::click(&mut h, &format!("1. {} {}", first.section, first.title));
     let count = first.steps.len();
-    assert!(common::shows(&h, &format!("Step 1 of {count}: {}", first.steps[0].title)));
+    assert!(common::shows(
+        &h,
+        &format!("Step 1 of {count}: {}", first.steps[0].title)
+    ));
     assert!(common::shows(&h, "Your task:"), "{:?}", common::labels(&h));
     common::click(&mut h, "Next");
     assert!(common::shows(&h, &format!("Step 2 of {count}")));
@@ -259,8 +290,17 @@ fn every_lesson_step_draws_in_the_panel() {
                     step: index,
                 }),
             );
-            let title = format!("Step {} of {}: {}", index + 1, lesson.steps.len(), step.title);
-            assert!(common::shows(&h, &title), "{title}: {:?}", common::labels(&h));
+            let title = format!(
+                "Step {} of {}: {}",
+                index + 1,
+                lesson.steps.len(),
+                step.title
+            );
+            assert!(
+                common::shows(&h, &title),
+                "{title}: {:?}",
+                common::labels(&h)
+            );
         }
     }
 }

@@ -9,7 +9,9 @@ use serde::Deserialize;
 use crate::model::lab2d::RayHandles;
 use crate::model::mesh::MeshSource;
 use crate::model::presets::Preset;
-use crate::model::{Action, Action2d, Action3d, Dimension, HalfAction, Lab, PlaybackAction};
+use crate::model::{
+    Action, Action2d, Action3d, Dimension, HalfAction, Lab, LessonAction, PlaybackAction,
+};
 use crate::persist::{MAX_FILE_BYTES, SavedState, StructureName, TaskName};
 
 /// A command, as the page sends it: `{"type": "set-ray", "origin": [0, 0], "direction": [1, 0]}`.
@@ -73,6 +75,14 @@ pub enum Command {
     Play {
         /// Whether to play.
         playing: bool,
+    },
+    /// Opens a lesson at a step (1 is its first), as `?lesson=NAME&step=N` does.
+    GoToLesson {
+        /// The lesson's name (`slab-test`).
+        lesson: String,
+        /// The step, from 1.
+        #[serde(default = "first_step")]
+        step: usize,
     },
     /// Changes nothing: the reply carries the report.
     Report,
@@ -157,6 +167,20 @@ impl Command {
             }
             Self::GoToStep { step } => one(PlaybackAction::GoTo(step).into()),
             Self::Play { playing } => one(PlaybackAction::Play(playing).into()),
+            Self::GoToLesson { lesson, step } => {
+                let lesson = crate::lessons::find(&lesson)?;
+                if step == 0 || step > lesson.steps.len() {
+                    return Err(format!(
+                        "the lesson \"{}\" has steps 1 to {}; step is {step}",
+                        lesson.name,
+                        lesson.steps.len()
+                    ));
+                }
+                one(Action::Lesson(LessonAction::Open {
+                    lesson,
+                    step: step - 1,
+                }))
+            }
             Self::Report => Ok((Vec::new(), None)),
             Self::ExportScene => {
                 let scene = serde_json::to_string(&SavedState::capture_full(lab))
@@ -177,6 +201,11 @@ impl Command {
             }
         }
     }
+}
+
+/// A lesson's first step, when a command names none.
+fn first_step() -> usize {
+    1
 }
 
 /// The ray of the half shown.
