@@ -304,3 +304,115 @@ fn every_lesson_step_draws_in_the_panel() {
         }
     }
 }
+
+#[test]
+fn the_page_opens_a_lesson_by_command_and_the_report_follows_the_progress() {
+    use bvhlab_app::embed::command::Command;
+    use bvhlab_app::lessons::report::LessonReport;
+    let command = |lab: &Lab, json: &str| {
+        Command::parse(json)
+            .and_then(|c| c.actions(lab, false))
+            .map(|(actions, _)| actions)
+    };
+    let mut lab = Lab::default();
+    let actions = command(&lab, r#"{"type": "go-to-lesson", "lesson": "slab-test"}"#)
+        .expect("a lesson by name opens at its first step");
+    lab.apply_all(actions).expect("applies");
+    let report = LessonReport::of(&lab).expect("a lesson is open");
+    assert_eq!(
+        (report.lesson.as_str(), report.step, report.steps),
+        ("slab-test", 1, 2)
+    );
+    assert!(!report.goal_reached && report.goals_reached == 0 && report.goals == 2);
+    assert!(report.text().contains("step 1 of 2") && report.text().contains("Not done yet"));
+    let message: serde_json::Value =
+        serde_json::from_str(&report.progress_message()).expect("JSON");
+    assert_eq!(message["bvhlab"], "progress");
+    assert_eq!(message["step"], 1);
+
+    // The step's solution, as the student would do it: the report says it is done.
+    let solution = lab
+        .lesson()
+        .expect("open")
+        .current()
+        .solution
+        .clone()
+        .expect("a solution");
+    lab.apply_setup(&solution, "the student");
+    let report = LessonReport::of(&lab).expect("open");
+    assert!(
+        report.goal_reached && report.goals_reached == 1,
+        "{report:?}"
+    );
+    assert!(report.text().ends_with("Done."), "{}", report.text());
+
+    for (json, word) in [
+        (
+            r#"{"type": "go-to-lesson", "lesson": "slab-test", "step": 3}"#,
+            "1 to 2",
+        ),
+        (
+            r#"{"type": "go-to-lesson", "lesson": "slab-test", "step": 0}"#,
+            "1 to 2",
+        ),
+        (
+            r#"{"type": "go-to-lesson", "lesson": "slab-tset"}"#,
+            "slab-test",
+        ),
+    ] {
+        let refused = command(&lab, json).expect_err("refused");
+        assert!(refused.contains(word), "{json}: {refused}");
+    }
+}
+
+#[test]
+fn a_saved_state_keeps_the_lesson_and_its_goals_reached() {
+    use bvhlab_app::persist::{from_file, to_file};
+    let lesson = lessons::find("slab-test").expect("the slab test lesson");
+    let mut lab = Lab::default();
+    let open = |step| {
+        Action::Lesson(LessonAction::Open {
+            lesson: lesson.clone(),
+            step,
+        })
+    };
+    lab.apply(open(0)).expect("opens");
+    let solution = lesson.steps[0].solution.clone().expect("a solution");
+    lab.apply_setup(&solution, "the student");
+    lab.apply(open(1)).expect("step 2");
+    let file = String::from_utf8(to_file(&lab)).expect("UTF-8");
+
+    let mut back = Lab::default();
+    back.apply(
+        from_file(file.as_bytes())
+            .expect("reads")
+            .apply()
+            .expect("applies"),
+    )
+    .expect("restores");
+    let progress = back.lesson().expect("the lesson came back");
+    assert_eq!(progress.lesson.name, "slab-test");
+    assert_eq!(progress.step, 1);
+    assert_eq!(progress.reached, vec![true, false]);
+
+    // A lesson this lab does not have: the rest comes back, and the status line says why the
+    // lesson closed.
+    let renamed = file.replace("\"slab-test\"", "\"slab-tests\"");
+    assert_ne!(renamed, file, "the file names the lesson: {file}");
+    let mut other = Lab::default();
+    other
+        .apply(
+            from_file(renamed.as_bytes())
+                .expect("reads")
+                .apply()
+                .expect("applies"),
+        )
+        .expect("restores");
+    assert!(other.lesson().is_none());
+    assert_eq!(other.two().ray, back.two().ray, "the ray came back");
+    let said = other.message().unwrap_or_default();
+    assert!(
+        said.contains("saved lesson") && said.contains("slab-test"),
+        "{said}"
+    );
+}

@@ -66,6 +66,8 @@ impl Lab {
                     three.write(&mut self.three);
                 }
                 self.dimension = state.shown;
+                // The lesson comes back as it was (its step's state is the one restored).
+                self.lesson = state.lesson;
                 state.note.map_or(Note::Keep, Note::Say)
             }
             Action::Tick { seconds, build_ms } => {

@@ -86,6 +86,8 @@ pub struct Restore {
     pub three: Option<Restore3d>,
     /// What to tell the student (a mesh that was a file, shown as the bunny meanwhile).
     pub note: Option<String>,
+    /// The lesson open, its step and the goals reached (none: no lesson is open).
+    pub lesson: Option<super::lesson::LessonProgress>,
 }
 
 impl PartialEq for Restore2d {
@@ -109,6 +111,7 @@ impl PartialEq for Restore {
             && self.two == other.two
             && self.three == other.three
             && self.note == other.note
+            && self.lesson == other.lesson
     }
 }
 

@@ -42,8 +42,8 @@ pub use names::{
     StructureName, TaskName, VariantName,
 };
 pub use state::{
-    DisplayState, FORMAT_VERSION, PlaybackState, RayState, SavedState, SceneState, SettingsState,
-    ShapeState, ViewState, VolumeState,
+    DisplayState, FORMAT_VERSION, LessonState, PlaybackState, RayState, SavedState, SceneState,
+    SettingsState, ShapeState, ViewState, VolumeState,
 };
 pub use state3d::{CameraState, MeshState, Ray3State, StoredPoint3, ThreeState};
 pub use storage::{AUTOSAVE_INTERVAL, Autosave, AutosaveStep, STORAGE_KEY};

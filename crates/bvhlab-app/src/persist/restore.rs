@@ -142,12 +142,45 @@ fn checked(state: &SavedState) -> Result<Restore, String> {
         Some(t) if t.shown => Dimension::Three,
         _ => Dimension::Two,
     };
-    let note = three.as_ref().and_then(|t| t.note.clone());
+    let mut note = three.as_ref().and_then(|t| t.note.clone());
+    let lesson = match state.lesson.as_ref().map(lesson) {
+        Some(Ok(progress)) => Some(progress),
+        // A lesson this lab no longer has (or has changed) closes; the rest comes back.
+        Some(Err(why)) => {
+            note = Some(note.map_or(why.clone(), |n| format!("{n} {why}")));
+            None
+        }
+        None => None,
+    };
     Ok(Restore {
         shown,
         two,
         three: three.map(|t| t.restore),
         note,
+        lesson,
+    })
+}
+
+/// The saved lesson, found among the lab's, at a step it has.
+fn lesson(saved: &super::state::LessonState) -> Result<crate::model::LessonProgress, String> {
+    let closed = "; it was closed, and the rest of the state is back.";
+    let lesson =
+        crate::lessons::find(&saved.name).map_err(|e| format!("The saved lesson: {e}{closed}"))?;
+    let steps = lesson.steps.len();
+    if saved.step >= steps || saved.reached.len() > steps {
+        return Err(format!(
+            "The saved lesson \"{}\" was at step {} of {}, and this lab's has {steps}{closed}",
+            saved.name,
+            saved.step + 1,
+            saved.reached.len().max(saved.step + 1)
+        ));
+    }
+    let mut reached = saved.reached.clone();
+    reached.resize(steps, false);
+    Ok(crate::model::LessonProgress {
+        lesson,
+        step: saved.step,
+        reached,
     })
 }
 

@@ -91,6 +91,20 @@ pub struct SavedState {
     /// own question and playback (absent in files from before the 3D view: the 2D half is
     /// shown).
     pub three: Option<ThreeState>,
+    /// The lesson open (absent: none).
+    pub lesson: Option<LessonState>,
+}
+
+/// The lesson open, its step and which steps' goals were reached.
+#[derive(Clone, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct LessonState {
+    /// The lesson's name (`slab-test`).
+    pub name: String,
+    /// The step shown (0 is the first).
+    pub step: usize,
+    /// For each step, whether its goal was reached.
+    pub reached: Vec<bool>,
 }
 
 /// The scene: `{"preset": "10k"}` (exactly that preset's shapes) or `{"shapes": [...]}`.
@@ -376,6 +390,11 @@ impl SavedState {
                 scale: Coord(two.camera.scale),
             },
             three: Some(ThreeState::capture(lab)),
+            lesson: lab.lesson().map(|p| LessonState {
+                name: p.lesson.name.clone(),
+                step: p.step,
+                reached: p.reached.clone(),
+            }),
         }
     }
 }
