@@ -270,11 +270,11 @@ impl eframe::App for WebLab {
             .report
             .lesson
             .as_ref()
-            .map(|l| l.progress_message());
-        if progress.is_some() && progress != self.progress {
-            if let Some(message) = &progress {
-                crate::embed::browser::announce(&self.origins, message);
-            }
+            .map(crate::lessons::report::LessonReport::progress_message);
+        if progress != self.progress
+            && let Some(message) = &progress
+        {
+            crate::embed::browser::announce(&self.origins, message);
         }
         self.progress = progress;
         if std::mem::take(&mut self.hold) {

@@ -7,7 +7,7 @@ mod common;
 
 use bvhlab_app::embed::StartParams;
 use bvhlab_app::lessons::{self, format};
-use bvhlab_app::model::{Action, Lab, LessonAction, PlaybackAction};
+use bvhlab_app::model::{Action, Lab, LessonAction, LessonProgress, PlaybackAction};
 
 /// A frame's worth of time, so a held playback step and a 3D load take effect.
 fn tick(lab: &mut Lab) {
@@ -106,7 +106,7 @@ fn each_step_opens_cleanly_starts_unreached_and_its_solution_reaches_it() {
             assert!(problems.is_empty(), "{at}: {problems:?}");
             lab.apply(PlaybackAction::End.into()).expect("to the end");
             tick(&mut lab);
-            if !lab.lesson().is_some_and(|p| p.reached_here()) {
+            if !lab.lesson().is_some_and(LessonProgress::reached_here) {
                 failures.push(format!(
                     "{at}: the solution does not reach the goal: {}",
                     goals_now(&lab)
@@ -210,7 +210,7 @@ fn a_bad_lesson_file_is_refused_with_its_line() {
             "03-test.toml:9:",
             "= or !=",
         ),
-        (format!("{head}"), "03-test.toml:", "step"),
+        (head.to_owned(), "03-test.toml:", "step"),
         (
             "title = \"T\"\nsection = \n".to_owned(),
             "03-test.toml:2:",

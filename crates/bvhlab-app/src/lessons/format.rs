@@ -75,7 +75,7 @@ pub fn read(file: &str, text: &str) -> Result<Lesson, String> {
             }
             None => None,
         };
-        if solution.is_some() != !goals.is_empty() {
+        if solution.is_some() == goals.is_empty() {
             return Err(format!(
                 "{}: a step with a goal has a solution that reaches it (and only then: the \
                  step \"{}\")",
@@ -83,7 +83,7 @@ pub fn read(file: &str, text: &str) -> Result<Lesson, String> {
                 step.title
             ));
         }
-        if step.task.is_some() != !goals.is_empty() {
+        if step.task.is_some() == goals.is_empty() {
             return Err(format!(
                 "{}: a step with a task has a goal to check it, and a goal has a task saying \
                  what to do (the step \"{}\")",

@@ -2,7 +2,7 @@
 //! each, read once ([`catalog`]). Their format is in that folder's README: TOML, with each
 //! step's starting state in the address's words and its goal in a line like
 //! `primitives-tested < compare` ([`goal_text`]). A file that cannot be read is refused
-//! with its name and line ([`format`]); `tests/lessons.rs` reads every one, so a bad lesson
+//! with its name and line ([`mod@format`]); `tests/lessons.rs` reads every one, so a bad lesson
 //! fails the tests before it reaches a page.
 
 pub mod format;

@@ -60,7 +60,8 @@ impl LessonReport {
             self.title, self.step, self.steps, self.step_title
         );
         if let Some(task) = &self.task {
-            s.push_str(&format!(" Task: {task}"));
+            s.push_str(" Task: ");
+            s.push_str(task);
             s.push_str(if self.goal_reached {
                 " Done."
             } else {

@@ -97,10 +97,8 @@ pub fn lessons(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
                 ui.label(RichText::new(format!("({now}: {mark})")).color(color));
             });
         }
-        if reached {
-            if let Some(why) = &step.why {
-                ui.add(egui::Label::new(RichText::new(format!("Why it matters: {why}"))).wrap());
-            }
+        if reached && let Some(why) = &step.why {
+            ui.add(egui::Label::new(RichText::new(format!("Why it matters: {why}"))).wrap());
         }
     }
 }

@@ -142,16 +142,7 @@ fn checked(state: &SavedState) -> Result<Restore, String> {
         Some(t) if t.shown => Dimension::Three,
         _ => Dimension::Two,
     };
-    let mut note = three.as_ref().and_then(|t| t.note.clone());
-    let lesson = match state.lesson.as_ref().map(lesson) {
-        Some(Ok(progress)) => Some(progress),
-        // A lesson this lab no longer has (or has changed) closes; the rest comes back.
-        Some(Err(why)) => {
-            note = Some(note.map_or(why.clone(), |n| format!("{n} {why}")));
-            None
-        }
-        None => None,
-    };
+    let (lesson, note) = lesson_and_note(state, three.as_ref().and_then(|t| t.note.clone()));
     Ok(Restore {
         shown,
         two,
@@ -159,6 +150,22 @@ fn checked(state: &SavedState) -> Result<Restore, String> {
         note,
         lesson,
     })
+}
+
+/// The saved lesson, if any and the lab has it, and what to tell the student: `note`, and
+/// why a lesson this lab no longer has (or has changed) was closed (the rest comes back).
+fn lesson_and_note(
+    state: &SavedState,
+    note: Option<String>,
+) -> (Option<crate::model::LessonProgress>, Option<String>) {
+    match state.lesson.as_ref().map(lesson) {
+        Some(Ok(progress)) => (Some(progress), note),
+        Some(Err(why)) => (
+            None,
+            Some(note.map_or(why.clone(), |n| format!("{n} {why}"))),
+        ),
+        None => (None, note),
+    }
 }
 
 /// The saved lesson, found among the lab's, at a step it has.
