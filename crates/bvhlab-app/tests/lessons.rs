@@ -49,6 +49,16 @@ fn every_lesson_file_reads() {
     for (file, lesson) in lessons::files().iter().zip(lessons::catalog()) {
         let lesson = lesson.as_ref().unwrap_or_else(|e| panic!("{e}"));
         assert!(!lesson.steps.is_empty(), "{}", file.0);
+        // Prose is reflowed for the panel: a file's line breaks inside a paragraph are gone.
+        for step in &lesson.steps {
+            for prose in [Some(&step.text), step.task.as_ref(), step.why.as_ref()]
+                .into_iter()
+                .flatten()
+            {
+                let single_breaks = prose.replace("\n\n", "").contains('\n');
+                assert!(!single_breaks, "{}: {prose:?}", file.0);
+            }
+        }
         assert_eq!(lesson.name, format::lesson_name(file.0));
     }
     let names: Vec<&str> = lessons::lessons().map(|l| l.name.as_str()).collect();

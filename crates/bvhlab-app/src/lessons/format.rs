@@ -94,11 +94,11 @@ pub fn read(file: &str, text: &str) -> Result<Lesson, String> {
         steps.push(LessonStep {
             title: step.title,
             setup: params.setup(),
-            text: step.text.trim().to_owned(),
+            text: reflow(&step.text),
             formula: step.formula.map(|f| f.trim_end().to_owned()),
-            task: step.task.map(|t| t.trim().to_owned()),
+            task: step.task.as_deref().map(reflow),
             goals,
-            why: step.why.map(|w| w.trim().to_owned()),
+            why: step.why.as_deref().map(reflow),
             solution,
         });
     }
@@ -119,6 +119,17 @@ pub fn lesson_name(file: &str) -> String {
         .filter(|(number, _)| !number.is_empty() && number.chars().all(|c| c.is_ascii_digit()))
         .map_or(stem, |(_, rest)| rest);
     unnumbered.to_owned()
+}
+
+/// Prose as the panel wraps it: the lines of a paragraph joined by spaces (a file's line
+/// breaks are only where its author's editor wrapped), paragraphs kept apart by a blank line.
+fn reflow(text: &str) -> String {
+    text.trim()
+        .split("\n\n")
+        .map(|paragraph| paragraph.split_whitespace().collect::<Vec<_>>().join(" "))
+        .filter(|paragraph| !paragraph.is_empty())
+        .collect::<Vec<_>>()
+        .join("\n\n")
 }
 
 /// The line (from 1) of byte `offset` in `text`.

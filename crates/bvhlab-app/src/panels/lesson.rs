@@ -65,8 +65,13 @@ pub fn lessons(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
     });
     ui.add(egui::Label::new(&step.text).wrap());
     if let Some(formula) = &step.formula {
+        // Formulas keep their lines (a wrapped formula misleads): a wide one scrolls.
         egui::Frame::group(ui.style()).show(ui, |ui| {
-            ui.add(egui::Label::new(RichText::new(formula).monospace()).wrap());
+            egui::ScrollArea::horizontal()
+                .id_salt("lesson formula")
+                .show(ui, |ui| {
+                    ui.add(egui::Label::new(RichText::new(formula).monospace()).extend());
+                });
         });
     }
     if let Some(task) = &step.task {
