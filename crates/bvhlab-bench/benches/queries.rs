@@ -1,7 +1,8 @@
 //! bvhlab alone on one mid-size mesh (the Stanford bunny, or a 100k-triangle torus when the
 //! shared meshes are absent), with the comparison's workload: the AABB tree's build, ray first
 //! hit for each ray kind and closest point, so speed work on the core can be tracked without
-//! the peers. Throughput is per ray (per query point).
+//! the peers. Throughput is per ray (per query point). Any hit runs on the same rays with
+//! their own `t_max` (for shadow rays, the light's distance).
 //!
 //! Run: `cargo bench -p bvhlab-bench --bench queries`.
 
@@ -50,6 +51,13 @@ fn queries(c: &mut Criterion) {
                     .filter_map(|(ray, t_max)| tree.ray_first_hit(ray, *t_max))
                     .map(|hit| hit.t)
                     .sum::<f32>()
+            });
+        });
+        group.bench_function(format!("any hit/{}", kind.name()), |b| {
+            b.iter(|| {
+                rays.iter()
+                    .filter(|(ray, t_max)| tree.ray_any_hit(ray, *t_max).is_some())
+                    .count()
             });
         });
     }
