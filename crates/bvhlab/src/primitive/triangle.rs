@@ -118,7 +118,23 @@ impl Triangle3 {
     /// (`crates/bvhlab-app/src/render3d/heatmap/trace.wgsl`), which must give the same hits and `t`
     /// bit for bit: a change here (or in `RayShear::of`) must be made there too.
     pub fn ray_hit(&self, ray: &Ray3) -> Option<f32> {
-        // The permutation and shear of the ray's direction ([`RayShear`], made with the ray).
+        let (corners, weights, det) = self.sheared_weights(ray)?;
+        let t_scaled = weights[0] * f64::from(corners[0].z)
+            + weights[1] * f64::from(corners[1].z)
+            + weights[2] * f64::from(corners[2].z);
+        // t = t_scaled / det must be >= 0: same sign, or zero.
+        if (det > 0.0 && t_scaled < 0.0) || (det < 0.0 && t_scaled > 0.0) {
+            return None;
+        }
+        let t = (t_scaled / det) as f32;
+        t.is_finite().then_some(t)
+    }
+
+    /// The watertight test's common part: the corners moved to the ray's origin and
+    /// sheared ([`RayShear`], made with the ray), the weights of a, b and c (each the edge
+    /// value opposite that corner) and their sum, or `None` when the ray's line misses the
+    /// triangle or the triangle is degenerate.
+    fn sheared_weights(&self, ray: &Ray3) -> Option<([Sheared; 3], [f64; 3], f64)> {
         let shear = ray.shear();
         let origin = ray.origin();
         let (a, b, c) = (
@@ -143,13 +159,7 @@ impl Triangle3 {
         if det == 0.0 || self.is_degenerate() {
             return None;
         }
-        let t_scaled = u * f64::from(a.z) + v * f64::from(b.z) + w * f64::from(c.z);
-        // t = t_scaled / det must be >= 0: same sign, or zero.
-        if (det > 0.0 && t_scaled < 0.0) || (det < 0.0 && t_scaled > 0.0) {
-            return None;
-        }
-        let t = (t_scaled / det) as f32;
-        t.is_finite().then_some(t)
+        Some(([a, b, c], [u, v, w], det))
     }
 
     /// Where the ray crosses the triangle, as the barycentric coordinates `(u, v)` of
@@ -162,25 +172,7 @@ impl Triangle3 {
     /// coordinates inside the triangle, without a second, differently rounded test: what
     /// shading needs to interpolate normals and texture coordinates.
     pub fn ray_barycentric(&self, ray: &Ray3) -> Option<(f32, f32)> {
-        let shear = ray.shear();
-        let origin = ray.origin();
-        let (a, b, c) = (
-            shear.apply(self.a - origin),
-            shear.apply(self.b - origin),
-            shear.apply(self.c - origin),
-        );
-        let edge = |p: Sheared, q: Sheared| {
-            f64::from(p.x) * f64::from(q.y) - f64::from(p.y) * f64::from(q.x)
-        };
-        // The weights of a, b and c.
-        let (wa, wb, wc) = (edge(c, b), edge(a, c), edge(b, a));
-        if (wa < 0.0 || wb < 0.0 || wc < 0.0) && (wa > 0.0 || wb > 0.0 || wc > 0.0) {
-            return None;
-        }
-        let det = wa + wb + wc;
-        if det == 0.0 || self.is_degenerate() {
-            return None;
-        }
+        let (_, [_, wb, wc], det) = self.sheared_weights(ray)?;
         Some(((wb / det) as f32, (wc / det) as f32))
     }
 
