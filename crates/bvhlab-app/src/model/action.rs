@@ -36,6 +36,8 @@ pub enum Action {
     Half(HalfAction),
     /// Opens or closes a lesson, or moves to one of its steps.
     Lesson(super::lesson::LessonAction),
+    /// Switches Predict on or off, or answers its question.
+    Predict(super::predict::PredictAction),
     /// Replaces the whole state (a saved state, a scene file, a share link), already
     /// checked.
     Restore(Box<Restore>),
@@ -197,9 +199,16 @@ impl Action {
             Self::Show(_)
             | Self::SetMessage(_)
             | Self::Lesson(_)
+            | Self::Predict(_)
             | Self::Restore(_)
             | Self::Tick { .. } => false,
         }
+    }
+}
+
+impl From<super::predict::PredictAction> for Action {
+    fn from(a: super::predict::PredictAction) -> Self {
+        Self::Predict(a)
     }
 }
 

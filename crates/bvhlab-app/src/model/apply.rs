@@ -59,6 +59,7 @@ impl Lab {
             }
             Action::Half(action) => self.apply_half(action)?,
             Action::Lesson(action) => self.apply_lesson(action)?,
+            Action::Predict(action) => self.apply_predict(action)?,
             Action::Restore(state) => {
                 let state = *state;
                 state.two.write(&mut self.two);
@@ -66,8 +67,12 @@ impl Lab {
                     three.write(&mut self.three);
                 }
                 self.dimension = state.shown;
-                // The lesson comes back as it was (its step's state is the one restored).
+                // The lesson comes back as it was (its step's state is the one restored),
+                // and Predict with its scores (a file from before Predict leaves it as is).
                 self.lesson = state.lesson;
+                if let Some(predict) = state.predict {
+                    self.predict = predict;
+                }
                 state.note.map_or(Note::Keep, Note::Say)
             }
             Action::Tick { seconds, build_ms } => {
@@ -77,11 +82,20 @@ impl Lab {
                 Note::Keep
             }
         };
-        // A new question shows its answer (the rule is in `super::playback`).
-        match asks {
-            Some(Dimension::Two) => self.two.half.playback.new_question(),
-            Some(Dimension::Three) => self.three.half.playback.new_question(),
-            None => {}
+        // A new question shows its answer (the rule is in `super::playback`); with Predict
+        // on, it starts from the beginning, to be predicted.
+        let predicting = self.predict.on;
+        let playback = match asks {
+            Some(Dimension::Two) => Some(&mut self.two.half.playback),
+            Some(Dimension::Three) => Some(&mut self.three.half.playback),
+            None => None,
+        };
+        if let Some(playback) = playback {
+            playback.new_question();
+            if predicting {
+                playback.at_end = false;
+                playback.step = 0;
+            }
         }
         match note {
             Note::Keep => {}
@@ -130,6 +144,14 @@ impl Lab {
 
     /// A change of the half shown's structures, question or playback.
     fn apply_half(&mut self, action: HalfAction) -> Result<Note, String> {
+        if let HalfAction::Playback(p) = action {
+            let forward = matches!(p, PlaybackAction::StepBy(by) if by > 0);
+            let plays = matches!(p, PlaybackAction::Play(true))
+                || (p == PlaybackAction::Toggle && !self.playing());
+            if let Some(why) = self.predict_refuses(forward, plays) {
+                return Err(why);
+            }
+        }
         match self.dimension {
             Dimension::Two => {
                 if matches!(action, HalfAction::Playback(_)) {

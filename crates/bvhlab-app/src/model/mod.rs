@@ -21,6 +21,7 @@
 //!   force's; [`structures`]: one dispatch over the core's structures.
 //! - [`scene`], [`presets`], [`volumes`], [`camera2d`]: the 2D half's data; [`mesh`],
 //!   [`orbit_camera`], [`heat`]: the 3D half's; [`tools`]: what a press does in each.
+//! - [`predict`]: the student predicts each step before it is shown, and is scored.
 //! - [`lesson`]: the lesson open and its goals reached; [`goal`]: a goal read live;
 //!   [`setup`]: a starting state in a few words (the address's and each lesson step's).
 //! - [`action`]: every change; [`restore`]: a whole state, checked; [`history`]: the 2D
@@ -44,6 +45,7 @@ pub mod mesh;
 pub mod orbit_camera;
 pub mod outcome;
 pub mod playback;
+pub mod predict;
 pub mod presets;
 pub mod question;
 pub mod recording;
@@ -82,6 +84,8 @@ pub struct Lab {
     message: Option<String>,
     /// The lesson open, if any ([`lesson`]).
     lesson: Option<LessonProgress>,
+    /// Predict: on or off, the question's tries and the scores ([`predict`]).
+    predict: predict::PredictState,
     /// Counts the changes: equal counts mean an unchanged state (the autosave compares it).
     changes: u64,
 }

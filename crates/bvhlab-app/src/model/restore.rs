@@ -88,6 +88,8 @@ pub struct Restore {
     pub note: Option<String>,
     /// The lesson open, its step and the goals reached (none: no lesson is open).
     pub lesson: Option<super::lesson::LessonProgress>,
+    /// Predict, on or off, with its scores (none: from before Predict; it stays as it is).
+    pub predict: Option<super::predict::PredictState>,
 }
 
 impl PartialEq for Restore2d {
@@ -112,6 +114,7 @@ impl PartialEq for Restore {
             && self.three == other.three
             && self.note == other.note
             && self.lesson == other.lesson
+            && self.predict == other.predict
     }
 }
 

@@ -14,6 +14,7 @@ pub mod export;
 pub mod heat;
 pub mod lesson;
 pub mod mesh;
+pub mod predict;
 pub mod queries;
 pub mod ray_point;
 pub mod recording;

@@ -71,6 +71,7 @@ where
     compare_picker(cx, half, ui);
     ui.separator();
     transport(cx, half, ui);
+    super::predict::predict_block(cx, ui);
     ui.separator();
     for (i, lane) in half.lanes().enumerate() {
         if half.lane_count() > 1 {

@@ -75,13 +75,13 @@ pub fn tree_panel(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
     // strip, and the diagram, which fills the height it is given, kept it one.)
     ui.set_min_height(ui.available_height());
     cx.ui.tree_rect = Some(ui.max_rect());
-    let hovered = match lab.dimension() {
+    let (hovered, clicked) = match lab.dimension() {
         Dimension::Two => {
             let two = lab.two();
             let revision = two.scene.revision();
             let prims = two.prims().segments.len();
             let mut trees = std::mem::take(&mut cx.ui.trees.two);
-            let hovered = diagrams(
+            let seen = diagrams(
                 &two.half,
                 revision,
                 prims,
@@ -91,13 +91,13 @@ pub fn tree_panel(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
                 ui,
             );
             cx.ui.trees.two = trees;
-            hovered
+            seen
         }
         Dimension::Three => {
             let three = lab.three();
             let prims = three.triangles().len();
             let mut trees = std::mem::take(&mut cx.ui.trees.three);
-            let hovered = diagrams(
+            let seen = diagrams(
                 &three.half,
                 three.revision(),
                 prims,
@@ -107,11 +107,21 @@ pub fn tree_panel(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
                 ui,
             );
             cx.ui.trees.three = trees;
-            hovered
+            seen
         }
     };
     if hovered.is_some() {
         cx.ui.hovered = hovered;
+    }
+    // A click on a node answers "which node" while Predict asks it (the main structure's
+    // diagram, which Predict follows).
+    if let Some((0, node)) = clicked
+        && let Some(question) = lab.predict_question()
+    {
+        let choice = crate::model::predict::Choice::Node(node.0);
+        if question.label(choice).is_some() {
+            cx.act(crate::model::predict::PredictAction::Answer(choice));
+        }
     }
 }
 
@@ -124,7 +134,10 @@ fn resize_grip(ui: &egui::Ui) {
     ui.painter().rect_filled(grip, 2.0, color);
 }
 
-/// Shows each lane's diagram in a column; the node hovered, if any.
+/// A node of a lane, by the lane's index and the node's id.
+type Picked = Option<(usize, bvhlab::NodeId)>;
+
+/// Shows each lane's diagram in a column; the node hovered and the node clicked, if any.
 #[allow(clippy::too_many_arguments)] // the half, its revision and size, and the UI's parts
 fn diagrams<P: LabPrimitive>(
     half: &Half<P>,
@@ -134,13 +147,14 @@ fn diagrams<P: LabPrimitive>(
     state: &UiState,
     trees: &mut [TreeDiagram; 2],
     ui: &mut egui::Ui,
-) -> Option<(usize, bvhlab::NodeId)>
+) -> (Picked, Picked)
 where
     Sphere<P::Point>: NodeVolume<Point = P::Point>,
     Aabb<P::Point>: NodeVolume<Point = P::Point>,
     Obb<P::Point>: NodeVolume<Point = P::Point>,
 {
     let mut hovered = None;
+    let mut clicked = None;
     ui.columns(half.lane_count(), |columns| {
         for (i, column) in columns.iter_mut().enumerate() {
             let lane = half.lane_at(i);
@@ -151,6 +165,9 @@ where
                     if let Some(node) = response.hovered {
                         hovered = Some((i, node));
                     }
+                    if let Some(node) = response.clicked {
+                        clicked = Some((i, node));
+                    }
                 }
                 Err(why) => {
                     column.label(why);
@@ -158,7 +175,7 @@ where
             }
         }
     });
-    hovered
+    (hovered, clicked)
 }
 
 /// The diagrams fitted into `rect` (side by side when comparing), for export.

@@ -94,19 +94,7 @@ fn checked(state: &SavedState) -> Result<Restore, String> {
     let three = state
         .three
         .as_ref()
-        .map(|t| {
-            let compare = t
-                .compare
-                .as_ref()
-                .map(|c| settings("the 3D comparison structure", c))
-                .transpose()?;
-            Checked3d::check(
-                t,
-                settings("the 3D structure", &t.structure)?,
-                compare,
-                &half,
-            )
-        })
+        .map(|t| three_half(t, &half))
         .transpose()?;
     let two = Restore2d {
         // A scene that is a preset is that preset in the menu too.
@@ -138,9 +126,10 @@ fn checked(state: &SavedState) -> Result<Restore, String> {
             scale,
         },
     };
-    let shown = match &three {
-        Some(t) if t.shown => Dimension::Three,
-        _ => Dimension::Two,
+    let shown = if three.as_ref().is_some_and(|t| t.shown) {
+        Dimension::Three
+    } else {
+        Dimension::Two
     };
     let (lesson, note) = lesson_and_note(state, three.as_ref().and_then(|t| t.note.clone()));
     Ok(Restore {
@@ -149,7 +138,36 @@ fn checked(state: &SavedState) -> Result<Restore, String> {
         three: three.map(|t| t.restore),
         note,
         lesson,
+        predict: state.predict.as_ref().map(predict),
     })
+}
+
+/// The 3D half as saved, checked (`half`: the 2D half's, for what it shares).
+fn three_half(t: &super::state3d::ThreeState, half: &RestoreHalf) -> Result<Checked3d, String> {
+    let compare = t
+        .compare
+        .as_ref()
+        .map(|c| settings("the 3D comparison structure", c))
+        .transpose()?;
+    Checked3d::check(
+        t,
+        settings("the 3D structure", &t.structure)?,
+        compare,
+        half,
+    )
+}
+
+/// Predict as saved: on or off, and the scores.
+fn predict(saved: &super::state::PredictSaved) -> crate::model::predict::PredictState {
+    let scores = saved.scores.iter().map(|s| {
+        let score = crate::model::predict::Score {
+            first_time: s.first_time,
+            after_hint: s.after_hint,
+            shown: s.shown,
+        };
+        (s.exercise.clone(), score)
+    });
+    crate::model::predict::PredictState::saved(saved.on, scores.collect())
 }
 
 /// The saved lesson, if any and the lab has it, and what to tell the student: `note`, and

@@ -93,6 +93,32 @@ pub struct SavedState {
     pub three: Option<ThreeState>,
     /// The lesson open (absent: none).
     pub lesson: Option<LessonState>,
+    /// Predict, on or off, and its scores (absent in files from before Predict).
+    pub predict: Option<PredictSaved>,
+}
+
+/// Predict: whether it is on, and each exercise's score.
+#[derive(Clone, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct PredictSaved {
+    /// Whether the lab asks before each step.
+    pub on: bool,
+    /// The scores, in the order the exercises were first met.
+    pub scores: Vec<ScoreSaved>,
+}
+
+/// One exercise's score.
+#[derive(Clone, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct ScoreSaved {
+    /// The exercise ("2D AABB tree: first hit").
+    pub exercise: String,
+    /// Right at the first try.
+    pub first_time: u32,
+    /// Right after a hint.
+    pub after_hint: u32,
+    /// Shown.
+    pub shown: u32,
 }
 
 /// The lesson open, its step and which steps' goals were reached.
@@ -394,6 +420,20 @@ impl SavedState {
                 name: p.lesson.name.clone(),
                 step: p.step,
                 reached: p.reached.clone(),
+            }),
+            predict: Some(PredictSaved {
+                on: lab.predict().on,
+                scores: lab
+                    .predict()
+                    .scores
+                    .iter()
+                    .map(|(exercise, s)| ScoreSaved {
+                        exercise: exercise.clone(),
+                        first_time: s.first_time,
+                        after_hint: s.after_hint,
+                        shown: s.shown,
+                    })
+                    .collect(),
             }),
         }
     }
