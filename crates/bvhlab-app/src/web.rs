@@ -264,13 +264,12 @@ impl eframe::App for WebLab {
             self.announced = true;
             crate::embed::browser::announce(&self.origins, r#"{"bvhlab":"ready"}"#);
         }
-        // The course page hears of a step moved to or a goal reached.
-        let progress = self
-            .app
-            .report
-            .lesson
-            .as_ref()
-            .map(crate::lessons::report::LessonReport::progress_message);
+        // The course page hears of a step moved to, a goal reached or a prediction scored.
+        let report = &self.app.report;
+        let progress = crate::report::predict::progress_message(
+            report.lesson.as_ref(),
+            report.predict.as_ref(),
+        );
         if progress != self.progress
             && let Some(message) = &progress
         {

@@ -368,3 +368,75 @@ fn scores_and_the_switch_come_back_with_a_saved_state_and_a_new_question_starts_
         .expect("present");
     assert!(again.playing());
 }
+
+#[test]
+fn the_page_hears_the_question_answers_by_number_and_receives_the_score() {
+    use bvhlab_app::embed::command::Command;
+    use bvhlab_app::report::predict::{PredictReport, progress_message};
+    let query = "?preset=random-segments&structure=aabb-tree&task=first-hit&ray=0.3,5,1,-0.15";
+    let mut lab = lab_at(query);
+    assert!(PredictReport::of(&lab).is_none(), "off: nothing to report");
+    let run = |lab: &mut Lab, json: &str| {
+        let (actions, _) = Command::parse(json)
+            .expect("a command")
+            .actions(lab, false)
+            .expect("accepted");
+        lab.apply_all(actions).expect("applies");
+    };
+    run(&mut lab, r#"{"type": "predict", "on": true}"#);
+    let question = lab
+        .predict_question()
+        .expect("the root's test is asked at step 0");
+    let report = PredictReport::of(&lab).expect("on");
+    let asked = report.question.as_ref().expect("a question");
+    assert_eq!(asked.prompt, question.prompt);
+    let text = report.text();
+    assert!(text.starts_with("Predict: "), "{text}");
+    assert!(text.contains("1 yes; 2 no"), "{text}");
+    // Answer 1 is the first offered; a number out of range is refused with the range.
+    let wrong = Command::parse(r#"{"type": "answer", "choice": 3}"#)
+        .expect("a command")
+        .actions(&lab, false)
+        .expect_err("refused");
+    assert!(wrong.contains("answers 1 to 2"), "{wrong}");
+    let right = 1 + question
+        .choices
+        .iter()
+        .position(|c| c.0 == question.answer)
+        .expect("offered");
+    run(
+        &mut lab,
+        &format!(r#"{{"type": "answer", "choice": {right}}}"#),
+    );
+    let report = PredictReport::of(&lab).expect("on");
+    let feedback = report.feedback.as_ref().expect("said");
+    assert_eq!(feedback.verdict, "right");
+    assert!(report.text().starts_with("Right: "), "{}", report.text());
+    assert_eq!(report.score.first_time, 1);
+    let message = progress_message(None, Some(&report)).expect("a message");
+    let json: serde_json::Value = serde_json::from_str(&message).expect("JSON");
+    assert_eq!(json["bvhlab"], "progress");
+    assert_eq!(json["exercise"], "2D AABB tree: first hit");
+    assert_eq!(json["score"]["first_time"], 1);
+    assert!(json.get("lesson").is_none());
+    // While stepping, the live region says the step in words, and what waits.
+    let step = bvhlab_app::report::PlaybackReport::of(&lab.two().half.lane).expect("recorded");
+    let words = step.text();
+    assert!(
+        words.starts_with(&format!(
+            " Step {} of {}: ray meets node 0",
+            step.step, step.steps
+        )),
+        "{words}"
+    );
+    // "show-answer" reveals the next question's step.
+    while lab.predict_question().is_none() {
+        lab.apply(PlaybackAction::StepBy(1).into()).expect("steps");
+    }
+    run(&mut lab, r#"{"type": "show-answer"}"#);
+    assert_eq!(
+        PredictReport::of(&lab).expect("on").score.shown,
+        1,
+        "shown counts"
+    );
+}

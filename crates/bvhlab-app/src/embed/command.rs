@@ -8,6 +8,7 @@ use serde::Deserialize;
 
 use crate::model::lab2d::RayHandles;
 use crate::model::mesh::MeshSource;
+use crate::model::predict::PredictAction;
 use crate::model::presets::Preset;
 use crate::model::{
     Action, Action2d, Action3d, Dimension, HalfAction, Lab, LessonAction, PlaybackAction,
@@ -84,6 +85,19 @@ pub enum Command {
         #[serde(default = "first_step")]
         step: usize,
     },
+    /// Switches Predict on or off (on: playback goes to the start when at the end).
+    Predict {
+        /// Whether the lab asks before each step.
+        on: bool,
+    },
+    /// Answers the question Predict asks: `choice` counts the answers offered from 1 (the
+    /// report's `predict.question.choices`, in order), as the keys 1 to 9 do.
+    Answer {
+        /// The answer's number, from 1.
+        choice: usize,
+    },
+    /// Shows the answer of the question Predict asks (it counts as shown).
+    ShowAnswer,
     /// Changes nothing: the reply carries the report.
     Report,
     /// Replies with the lab's state as a scene file's JSON, in `scene`.
@@ -113,7 +127,12 @@ impl Command {
     pub fn needs_idle(&self) -> bool {
         matches!(
             self,
-            Self::Step { .. } | Self::GoToStep { .. } | Self::Play { .. }
+            Self::Step { .. }
+                | Self::GoToStep { .. }
+                | Self::Play { .. }
+                | Self::Predict { .. }
+                | Self::Answer { .. }
+                | Self::ShowAnswer
         )
     }
 
@@ -181,6 +200,25 @@ impl Command {
                     step: step - 1,
                 }))
             }
+            Self::Predict { on } => one(PredictAction::On(on).into()),
+            Self::Answer { choice } => {
+                let question = lab.predict_question().ok_or_else(|| {
+                    "there is no question to answer: Predict is off, or this step decides \
+                     nothing"
+                        .to_owned()
+                })?;
+                let (answer, _) = choice
+                    .checked_sub(1)
+                    .and_then(|i| question.choices.get(i))
+                    .ok_or_else(|| {
+                        format!(
+                            "choice is {choice}; the question has answers 1 to {}",
+                            question.choices.len()
+                        )
+                    })?;
+                one(PredictAction::Answer(*answer).into())
+            }
+            Self::ShowAnswer => one(PredictAction::Show.into()),
             Self::Report => Ok((Vec::new(), None)),
             Self::ExportScene => {
                 let scene = serde_json::to_string(&SavedState::capture_full(lab))

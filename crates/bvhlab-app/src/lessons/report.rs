@@ -74,15 +74,6 @@ impl LessonReport {
     /// The message a course page receives: `{bvhlab: "progress", lesson, step, steps,
     /// goal_reached, goals_reached, goals}`.
     pub fn progress_message(&self) -> String {
-        serde_json::json!({
-            "bvhlab": "progress",
-            "lesson": self.lesson,
-            "step": self.step,
-            "steps": self.steps,
-            "goal_reached": self.goal_reached,
-            "goals_reached": self.goals_reached,
-            "goals": self.goals,
-        })
-        .to_string()
+        crate::report::predict::progress_message(Some(self), None).unwrap_or_default()
     }
 }

@@ -1,6 +1,8 @@
 //! What the lab reports about itself, as text for screen readers and as JSON for the page
 //! (the browser test reads it; a course page embedding the lab can too).
 
+pub mod predict;
+
 use std::fmt::Write as _;
 
 use serde::Serialize;
@@ -37,6 +39,8 @@ pub struct Report {
     pub message: Option<String>,
     /// The lesson open, if any.
     pub lesson: Option<crate::lessons::report::LessonReport>,
+    /// Predict, when it is on: the exercise, its score, the question waiting.
+    pub predict: Option<predict::PredictReport>,
     /// The median interval between frames, in milliseconds.
     pub frame_ms: Option<f64>,
     /// The median CPU time per frame (UI, tessellation, draw calls), in milliseconds.
@@ -130,9 +134,27 @@ pub struct PlaybackReport {
     pub agrees: bool,
     /// Why there is no recording (no ray yet, a variant that does not exist...).
     pub error: Option<String>,
+    /// The step shown, in words (the "Step through" panel's sentence), once one is.
+    pub said: Option<String>,
+    /// The nodes waiting on the stack or queue, next first.
+    pub waiting: Vec<u32>,
 }
 
 impl PlaybackReport {
+    /// While stepping (not at the end), the step in words, for the live region: " Step 4
+    /// of 31: ray meets node 2's volume for t in [1.2, 3.4]. Waiting: node 6, then node 3."
+    pub fn text(&self) -> String {
+        let Some(said) = self.said.as_ref().filter(|_| self.step < self.steps) else {
+            return String::new();
+        };
+        let mut s = format!(" Step {} of {}: {said}.", self.step, self.steps);
+        if !self.waiting.is_empty() {
+            let nodes: Vec<String> = self.waiting.iter().map(|n| format!("node {n}")).collect();
+            let _ = write!(s, " Waiting: {}.", nodes.join(", then "));
+        }
+        s
+    }
+
     /// The report of a lane in either half.
     pub fn of<P: LabPrimitive>(lane: &Lane<P>) -> Option<Self> {
         let dim = if P::DIMENSION == Dimension::Three {
@@ -172,6 +194,8 @@ impl PlaybackReport {
                     brute_force_tests: 0,
                     agrees: false,
                     error: Some(why.clone()),
+                    said: None,
+                    waiting: Vec::new(),
                 });
             }
         };
@@ -202,6 +226,10 @@ impl PlaybackReport {
             brute_force_tests: rec.brute_cost.prim_tests,
             agrees: rec.agrees(),
             error: None,
+            said: snap
+                .event
+                .map(|e| crate::pseudocode::describe(&e, kind, q.task, q.variant)),
+            waiting: snap.frontier.iter().map(|p| p.node.0).collect(),
         })
     }
 }
@@ -218,6 +246,7 @@ impl Report {
             renderer: ui.renderer.clone(),
             message: lab.message().map(str::to_owned),
             lesson: crate::lessons::report::LessonReport::of(lab),
+            predict: predict::PredictReport::of(lab),
             canvas: [r.min.x, r.min.y, r.max.x, r.max.y],
             scene: SceneReport {
                 shapes: two.scene.shapes().len(),
@@ -306,9 +335,18 @@ impl Report {
         {
             let _ = write!(s, " Nearest primitive {prim} at distance {d:.3}.");
         }
+        if let Some(step) = self.playback.first() {
+            s.push_str(&step.text());
+        }
         if let Some(lesson) = &self.lesson {
             s.push(' ');
             s.push_str(&lesson.text());
+        }
+        if let Some(predict) = self.predict.as_ref().map(predict::PredictReport::text)
+            && !predict.is_empty()
+        {
+            s.push(' ');
+            s.push_str(&predict);
         }
         s
     }
