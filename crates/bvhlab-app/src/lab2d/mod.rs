@@ -10,6 +10,7 @@
 mod draw;
 mod input;
 pub mod interaction;
+pub mod keys;
 mod layer;
 pub mod overlay;
 mod screen;
@@ -38,6 +39,8 @@ pub struct CanvasState {
     pub volume_hover: Option<bvhlab::FitKind>,
     /// The structure and scene of each lane, tessellated for the view.
     layers: [Option<StaticLayer>; 2],
+    /// The handle the arrow keys move ([`keys`]), once R picked one.
+    pub key_handle: Option<keys::KeyHandle>,
 }
 
 impl Default for CanvasState {
@@ -47,6 +50,7 @@ impl Default for CanvasState {
             rect: egui::Rect::NOTHING,
             volume_hover: None,
             layers: [None, None],
+            key_handle: None,
         }
     }
 }
@@ -83,6 +87,9 @@ pub fn canvas(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
     };
     pan_and_zoom(cx, ui, &response, &screen);
     input::handle_tool(cx, ui, &response, &screen);
+    let mut picked = cx.ui.canvas.key_handle;
+    keys::handle_keys(cx, ui, &screen, &mut picked);
+    cx.ui.canvas.key_handle = picked;
     if cx.ui.link_hover
         && let (Some(i), Some(p)) = (active, response.hover_pos())
         && !response.dragged()
@@ -121,6 +128,15 @@ pub fn canvas(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
             );
         }
     }
+    keys::draw_picked(
+        &painter.with_clip_rect(halves[0]),
+        &Screen {
+            camera: lab.camera,
+            rect: halves[0],
+        },
+        lab,
+        cx.ui.canvas.key_handle,
+    );
     let volumes: Vec<_> = volumes::shown_volumes(lab)
         .into_iter()
         .map(|k| {

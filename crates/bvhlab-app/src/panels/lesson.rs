@@ -4,7 +4,7 @@
 
 use egui::{Color32, RichText};
 
-use crate::model::{Action, LessonAction};
+use crate::model::{Action, Lab, LessonAction};
 use crate::ui_state::Cx;
 
 /// A goal met: its word and colour (readable on both themes; the word says it without the
@@ -63,6 +63,13 @@ pub fn lessons(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
             cx.act(Action::Lesson(LessonAction::Close));
         }
     });
+    ui.label(
+        RichText::new(
+            "Keys: [ and ] move between steps; R and the arrow keys move the ray and point.",
+        )
+        .small()
+        .weak(),
+    );
     ui.add(egui::Label::new(&step.text).wrap());
     if let Some(formula) = &step.formula {
         // Formulas keep their lines (a wrapped formula misleads): a wide one scrolls.
@@ -126,4 +133,32 @@ fn choose(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
             }));
         }
     }
+}
+
+/// The lesson's keys, when no widget has the keyboard focus: `]` the next step, `[` the one
+/// before (a keyboard user moves through a lesson without finding its buttons).
+pub fn lesson_keys(lab: &Lab, ctx: &egui::Context, actions: &mut Vec<Action>) {
+    let Some(progress) = lab.lesson() else {
+        return;
+    };
+    if ctx.text_edit_focused() || ctx.memory(|m| m.focused().is_some()) {
+        return;
+    }
+    let (back, next) = ctx.input(|i| {
+        (
+            i.key_pressed(egui::Key::OpenBracket),
+            i.key_pressed(egui::Key::CloseBracket),
+        )
+    });
+    let step = if next && progress.step + 1 < progress.lesson.steps.len() {
+        progress.step + 1
+    } else if back && progress.step > 0 {
+        progress.step - 1
+    } else {
+        return;
+    };
+    actions.push(Action::Lesson(LessonAction::Open {
+        lesson: progress.lesson.clone(),
+        step,
+    }));
 }
