@@ -33,9 +33,9 @@ export class BvhLab {
       } else if (data?.bvhlab === 'panic') {
         for (const listener of this.listeners.panic) listener(data.message);
       } else if (data?.bvhlab === 'progress') {
-        const { lesson, step, steps, goal_reached, goals_reached, goals } = data;
+        const { lesson, step, steps, goal_reached, goals_reached, goals, exercise, score } = data;
         for (const listener of this.listeners.progress) {
-          listener({ lesson, step, steps, goal_reached, goals_reached, goals });
+          listener({ lesson, step, steps, goal_reached, goals_reached, goals, exercise, score });
         }
       }
     });
@@ -68,12 +68,23 @@ export class BvhLab {
   /// Calls `listener(message)` if the lab stops on an error.
   onPanic(listener) { this.listeners.panic.push(listener); }
 
-  /// Calls `listener({lesson, step, steps, goal_reached, goals_reached, goals})` whenever
-  /// the student opens a lesson step or reaches its goal (steps count from 1).
+  /// Calls `listener({lesson, step, steps, goal_reached, goals_reached, goals, exercise,
+  /// score})` whenever the student opens a lesson step, reaches its goal, or settles a
+  /// prediction (steps count from 1). The lesson's fields are there while a lesson is open;
+  /// `exercise` ("2D AABB tree: first hit") and `score` ({first_time, after_hint, shown})
+  /// while Predict is on.
   onProgress(listener) { this.listeners.progress.push(listener); }
 
   /// Opens lesson `name` at `step` (1 is its first).
   goToLesson(lesson, step = 1) { return this.send({ type: 'go-to-lesson', lesson, step }); }
+
+  /// Switches Predict on or off: the lab asks before each step that decides something.
+  predict(on = true) { return this.send({ type: 'predict', on }); }
+  /// Answers Predict's question: `choice` counts the report's `predict.question.choices`
+  /// from 1.
+  answer(choice) { return this.send({ type: 'answer', choice }); }
+  /// Shows the answer of Predict's question (it counts as shown).
+  showAnswer() { return this.send({ type: 'show-answer' }); }
 
   report() { return this.send({ type: 'report' }); }
   loadScene(scene) { return this.send({ type: 'load-scene', scene }); }

@@ -12,9 +12,17 @@ const status = document.getElementById('course-status');
 lab.onProgress((p) => {
   window.progress.push(p);
   const item = document.createElement('li');
-  item.textContent = p.goal_reached
-    ? `${p.lesson}, step ${p.step} of ${p.steps}: done (${p.goals_reached} of ${p.goals} tasks of the lesson done)`
-    : `${p.lesson}, step ${p.step} of ${p.steps}: opened`;
+  const parts = [];
+  if (p.lesson) {
+    parts.push(p.goal_reached
+      ? `${p.lesson}, step ${p.step} of ${p.steps}: done (${p.goals_reached} of ${p.goals} tasks of the lesson done)`
+      : `${p.lesson}, step ${p.step} of ${p.steps}: opened`);
+  }
+  if (p.exercise) {
+    const s = p.score;
+    parts.push(`predicting ${p.exercise}: ${s.first_time} right first time, ${s.after_hint} after a hint, ${s.shown} shown`);
+  }
+  item.textContent = parts.join('; ');
   list.append(item);
 });
 

@@ -120,7 +120,7 @@ impl LabApp {
         }];
         playback_keys(&self.lab, ui, &mut actions);
         edit_keys(&self.lab, ui, &mut actions);
-        crate::panels::predict::answer_keys(&self.lab, ui.ctx(), &mut actions);
+        crate::panels::predict::predict_keys(&self.lab, ui.ctx(), &mut actions);
         crate::panels::lesson::lesson_keys(&self.lab, ui.ctx(), &mut actions);
         actions.extend(crate::persist::poll_imports(ui.ctx()));
         actions.extend(crate::panels::export::finish_png(&mut self.ui, ui.ctx()));

@@ -1,5 +1,5 @@
 //! Predict, in the "Step through" panel: a switch, the question waiting at the step with its
-//! answers as buttons (keys 1 to 9 answer too; a node can be clicked in the tree diagram),
+//! answers as buttons (P switches it, keys 1 to 9 answer too; a node can be clicked in the tree diagram),
 //! what the lab said about the last answer, and the exercise's score.
 
 use egui::{Color32, RichText};
@@ -19,7 +19,7 @@ pub fn predict_block(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
     let state = lab.predict();
     let mut on = state.on;
     if ui
-        .checkbox(&mut on, "Predict each step")
+        .checkbox(&mut on, "Predict each step (P)")
         .on_hover_text(
             "Before each step that decides something, say what happens next: the lab then \
              shows the step and says whether you were right, and why.",
@@ -119,9 +119,14 @@ const KEYS: [egui::Key; 9] = [
     egui::Key::Num9,
 ];
 
-/// The answer keys 1 to 9 give while a question waits, when no text field has the focus.
-pub fn answer_keys(lab: &Lab, ctx: &egui::Context, actions: &mut Vec<Action>) {
+/// Predict's keys, when no text field has the focus: P switches it on or off, and 1 to 9
+/// answer the question waiting.
+pub fn predict_keys(lab: &Lab, ctx: &egui::Context, actions: &mut Vec<Action>) {
     if ctx.text_edit_focused() {
+        return;
+    }
+    if ctx.input(|i| i.key_pressed(egui::Key::P)) {
+        actions.push(PredictAction::On(!lab.predict().on).into());
         return;
     }
     let Some(question) = lab.predict_question() else {
