@@ -58,3 +58,4 @@ echo "Testing $url in headless Chromium ($("${CHROMIUM:-/usr/bin/chromium}" --ve
 node tests/e2e/lab.test.mjs "$url"
 node tests/e2e/view3d.test.mjs "$url"
 node tests/e2e/embed.test.mjs "$url"
+node tests/e2e/lesson.test.mjs "$url"

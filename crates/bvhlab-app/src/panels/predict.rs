@@ -37,15 +37,13 @@ pub fn predict_block(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
         crate::model::Dimension::Three => lab.three().half.playback.shown(steps),
     };
     if let Some(feedback) = state.feedback_at(step) {
-        let (word, color) = match feedback.verdict {
-            Verdict::Right | Verdict::RightAfterHint => ("Right", RIGHT),
-            Verdict::Wrong => ("Not yet", NOT_RIGHT),
-            Verdict::Shown => ("Shown", NOT_RIGHT),
+        // The words say how it went ("Right: ...", "Not quite. Hint: ...", "The answer:
+        // ..."); the colour repeats it.
+        let color = match feedback.verdict {
+            Verdict::Right | Verdict::RightAfterHint => RIGHT,
+            Verdict::Wrong | Verdict::Shown => NOT_RIGHT,
         };
-        ui.horizontal_wrapped(|ui| {
-            ui.label(RichText::new(word).strong().color(color));
-            ui.add(egui::Label::new(&feedback.text).wrap());
-        });
+        ui.add(egui::Label::new(RichText::new(&feedback.text).color(color)).wrap());
     }
     match lab.predict_question() {
         Some(question) => {
