@@ -156,13 +156,15 @@ impl LabApp {
 /// Below this window width (points) the side panels keep to their share of it.
 pub const NARROW: f32 = 1100.0;
 
-/// The panels around the view, and the view.
-fn layout(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
-    let three = cx.lab.dimension() == Dimension::Three;
-    // Narrow windows (an embedded lab) give the panels less, so the view keeps room: below
-    // NARROW the panels may not grow past their share (their widest rows scroll or clip),
-    // or an 800 px embed left the view 70 px.
-    let width = ui.available_width();
+/// Below this window width (points) the controls and "Step through" share one panel, as
+/// tabs (a 1280 px laptop gave the view a third of its width with both beside it).
+pub const COMPACT: f32 = 1500.0;
+
+/// The controls (left) and "Step through" (right), each where shown. Narrow windows (an
+/// embedded lab) give the panels less, so the view keeps room: below NARROW the panels may
+/// not grow past their share (their widest rows scroll or clip), or an 800 px embed left the
+/// view 70 px.
+fn side_panels(cx: &mut Cx<'_>, ui: &mut egui::Ui, width: f32) {
     let (controls_max, stepper_max) = if width < NARROW {
         (width * 0.3, width * 0.32)
     } else {
@@ -177,7 +179,6 @@ fn layout(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
                 egui::ScrollArea::vertical().show(ui, |ui| crate::panels::controls(cx, ui));
             });
     }
-    egui::Panel::bottom("status").show(ui, |ui| crate::panels::status::status_line(cx, ui));
     if cx.ui.panels.stepper {
         egui::Panel::right("stepper")
             .resizable(true)
@@ -187,6 +188,50 @@ fn layout(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
                 egui::ScrollArea::vertical()
                     .show(ui, |ui| crate::panels::step_through::step_through(cx, ui));
             });
+    }
+}
+
+/// The controls and "Step through" as two tabs of one panel.
+fn side_tabs(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
+    use crate::ui_state::SideTab;
+    ui.horizontal(|ui| {
+        let tab = &mut cx.ui.panels.tab;
+        ui.selectable_value(tab, SideTab::Controls, "Lessons and controls");
+        ui.selectable_value(tab, SideTab::Stepper, "Step through");
+    });
+    ui.separator();
+    match cx.ui.panels.tab {
+        SideTab::Controls => {
+            egui::ScrollArea::vertical()
+                .id_salt("controls tab")
+                .show(ui, |ui| crate::panels::controls(cx, ui));
+        }
+        SideTab::Stepper => {
+            egui::ScrollArea::vertical()
+                .id_salt("stepper tab")
+                .show(ui, |ui| crate::panels::step_through::step_through(cx, ui));
+        }
+    }
+}
+
+/// The panels around the view, and the view.
+fn layout(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
+    let three = cx.lab.dimension() == Dimension::Three;
+    let width = ui.available_width();
+    let shared = width < COMPACT && cx.ui.panels.controls && cx.ui.panels.stepper;
+    egui::Panel::bottom("status").show(ui, |ui| {
+        crate::panels::status::status_line(cx, ui, shared);
+    });
+    if shared {
+        // A laptop's window: the controls and "Step through" share one panel, as tabs, so
+        // that the view keeps most of the width.
+        egui::Panel::left("side")
+            .resizable(true)
+            .default_size((width * 0.34).clamp(300.0, 440.0))
+            .max_size((width * 0.45).max(200.0))
+            .show(ui, |ui| side_tabs(cx, ui));
+    } else {
+        side_panels(cx, ui, width);
     }
     if cx.ui.panels.tree_in(cx.lab.dimension()) {
         egui::Panel::bottom("tree")

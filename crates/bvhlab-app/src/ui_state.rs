@@ -21,6 +21,19 @@ pub struct PanelsShown {
     pub tree: bool,
     /// The tree diagram below the 3D view (off at first: the view keeps the room).
     pub tree3d: bool,
+    /// In a window too narrow for both side panels (a laptop, an embed), they share one,
+    /// as tabs: the one shown.
+    pub tab: SideTab,
+}
+
+/// The side panel shown when the controls and "Step through" share one (narrow windows).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum SideTab {
+    /// The lessons and the controls.
+    #[default]
+    Controls,
+    /// "Step through": playback, Predict, the counters and the pseudocode.
+    Stepper,
 }
 
 impl PanelsShown {
@@ -40,6 +53,7 @@ impl Default for PanelsShown {
             stepper: true,
             tree: true,
             tree3d: false,
+            tab: SideTab::Controls,
         }
     }
 }

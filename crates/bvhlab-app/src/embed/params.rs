@@ -111,6 +111,7 @@ fn parse_panels(value: &str) -> Result<Panels, String> {
             stepper: false,
             tree: false,
             tree3d: false,
+            tab: crate::ui_state::SideTab::Controls,
         };
         for name in value.split(',').map(str::trim).filter(|n| !n.is_empty()) {
             match name {

@@ -10,8 +10,9 @@ use crate::model::lab3d::Lab3d;
 use crate::paint::colors;
 use crate::ui_state::Cx;
 
-/// The status line.
-pub fn status_line(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
+/// The status line. `shared`: the controls and "Step through" share one panel as tabs (a
+/// narrow window), and the buttons choose the tab.
+pub fn status_line(cx: &mut Cx<'_>, ui: &mut egui::Ui, shared: bool) {
     let lab = cx.lab;
     let three = lab.dimension() == Dimension::Three;
     let message = lab
@@ -22,10 +23,18 @@ pub fn status_line(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
     let clock = &cx.ui.clock;
     let renderer = &cx.ui.renderer;
     ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
-        ui.toggle_value(&mut panels.stepper, "Step through")
-            .on_hover_text("Show or hide the \"Step through\" panel");
-        ui.toggle_value(&mut panels.controls, "Controls")
-            .on_hover_text("Show or hide the controls");
+        if shared {
+            use crate::ui_state::SideTab;
+            ui.selectable_value(&mut panels.tab, SideTab::Stepper, "Step through")
+                .on_hover_text("Show the \"Step through\" tab");
+            ui.selectable_value(&mut panels.tab, SideTab::Controls, "Controls")
+                .on_hover_text("Show the controls tab");
+        } else {
+            ui.toggle_value(&mut panels.stepper, "Step through")
+                .on_hover_text("Show or hide the \"Step through\" panel");
+            ui.toggle_value(&mut panels.controls, "Controls")
+                .on_hover_text("Show or hide the controls");
+        }
         if let (Some(ms), Some(fps)) = (clock.median_ms(), clock.fps()) {
             ui.label(format!("frame {ms:.1} ms ({fps:.0} fps)"));
         }
