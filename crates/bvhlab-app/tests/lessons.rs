@@ -7,6 +7,7 @@ mod common;
 
 use bvhlab_app::embed::StartParams;
 use bvhlab_app::lessons::{self, format};
+use bvhlab_app::model::goal::Quantity;
 use bvhlab_app::model::{Action, Lab, LessonAction, LessonProgress, PlaybackAction};
 
 /// A frame's worth of time, so a held playback step and a 3D load take effect.
@@ -37,6 +38,21 @@ fn goals_now(lab: &Lab) -> String {
         })
         .collect::<Vec<_>>()
         .join(", ")
+}
+
+/// Switches Predict on and answers every question of the recording right.
+fn predict_all(lab: &mut Lab) {
+    use bvhlab_app::model::predict::PredictAction;
+    lab.apply(PredictAction::On(true).into())
+        .expect("Predict on");
+    let steps = lab.steps();
+    for _ in 0..=steps {
+        match lab.predict_question() {
+            Some(q) => lab.apply(PredictAction::Answer(q.answer).into()),
+            None => lab.apply(PlaybackAction::StepBy(1).into()),
+        }
+        .expect("an answer or a step applies");
+    }
 }
 
 #[test]
@@ -114,6 +130,10 @@ fn each_step_opens_cleanly_starts_unreached_and_its_solution_reaches_it() {
             }
             let problems = lab.apply_setup(solution, "the solution");
             assert!(problems.is_empty(), "{at}: {problems:?}");
+            if step.goals.iter().any(|g| g.quantity == Quantity::Predicted) {
+                // Reached by answering: Predict on, every question answered right.
+                predict_all(&mut lab);
+            }
             lab.apply(PlaybackAction::End.into()).expect("to the end");
             tick(&mut lab);
             if !lab.lesson().is_some_and(LessonProgress::reached_here) {

@@ -5,11 +5,11 @@
 
 use crate::model::presets::Preset;
 use crate::model::{Action, Lab, LessonAction, Setup};
-use crate::persist::{STORAGE_KEY, StructureName, TaskName, VariantName};
+use crate::persist::{STORAGE_KEY, SplitName, StructureName, TaskName, VariantName};
 pub use crate::ui_state::PanelsShown as Panels;
 
 /// The parameters the lab reads, with what each does (the README's table is this list).
-pub const PARAMETERS: [(&str, &str); 14] = [
+pub const PARAMETERS: [(&str, &str); 15] = [
     (
         "preset",
         "a 2D scene: one of the presets' slugs (kd-tree, quadtree, 10k, ...)",
@@ -25,6 +25,10 @@ pub const PARAMETERS: [(&str, &str); 14] = [
     (
         "compare",
         "a second structure shown beside the first, on the same question (same names as structure)",
+    ),
+    (
+        "split",
+        "how a BVH (sphere, AABB or OBB tree) splits its nodes: spatial-median, object-median, binned-sah",
     ),
     (
         "task",
@@ -76,6 +80,8 @@ pub struct StartParams {
     pub structure: Option<StructureName>,
     /// `compare=`.
     pub compare: Option<StructureName>,
+    /// `split=`: how a BVH splits its nodes.
+    pub split: Option<SplitName>,
     /// `task=`.
     pub task: Option<TaskName>,
     /// `ray=`: 4 or 6 numbers.
@@ -189,6 +195,12 @@ impl StartParams {
                     self.compare = Some(structure);
                 }
             }
+            "split" => {
+                self.split = Some(
+                    SplitName::from_name(value)
+                        .ok_or_else(|| unknown(name, "split", value, SplitName::NAMES))?,
+                );
+            }
             "task" => {
                 self.task = Some(
                     TaskName::from_name(value)
@@ -250,6 +262,9 @@ impl StartParams {
         if let Some(s) = self.compare {
             parts.push(format!("compare={}", stored_name(&s)));
         }
+        if let Some(split) = self.split {
+            parts.push(format!("split={}", stored_name(&split)));
+        }
         if let Some(t) = self.task {
             parts.push(format!("task={}", stored_name(&t)));
         }
@@ -282,6 +297,7 @@ impl StartParams {
             mesh: self.mesh.clone(),
             structure: self.structure.map(Into::into),
             compare: self.compare.map(Into::into),
+            split: self.split.map(Into::into),
             ray: self.ray.clone(),
             point: self.point.clone(),
             task: self.task.map(Into::into),

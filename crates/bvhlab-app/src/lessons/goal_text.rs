@@ -4,10 +4,10 @@
 //! expected.
 
 use crate::model::goal::{Comparison, Goal, Quantity, Target, Word};
-use crate::persist::{StructureName, TaskName, VariantName};
+use crate::persist::{SplitName, StructureName, TaskName, VariantName};
 
 /// The quantities a goal reads, with what each is (the lessons' README lists these).
-pub const QUANTITIES: [(&str, Quantity, &str); 16] = [
+pub const QUANTITIES: [(&str, Quantity, &str); 19] = [
     (
         "answer",
         Quantity::Answer,
@@ -64,6 +64,21 @@ pub const QUANTITIES: [(&str, Quantity, &str); 16] = [
         "ray-dz",
         Quantity::RayDirection(2),
         "the ray direction's z, as a unit vector (3D)",
+    ),
+    (
+        "split",
+        Quantity::Split,
+        "how the BVH splits its nodes (spatial-median, object-median, binned-sah)",
+    ),
+    (
+        "sah-cost",
+        Quantity::SahCost,
+        "the structure's SAH cost (the expected cost of a random ray, in box tests)",
+    ),
+    (
+        "predicted",
+        Quantity::Predicted,
+        "Predict's questions answered right (first time or after a hint) in this exercise",
     ),
     ("ray-x", Quantity::RayOrigin(0), "the ray origin's x"),
     ("ray-y", Quantity::RayOrigin(1), "the ray origin's y"),
@@ -135,6 +150,9 @@ fn target(quantity: Quantity, value: &str) -> Result<Target, String> {
         Quantity::Task => TaskName::from_name(value)
             .map(|t| Target::Word(Word::Task(t.into())))
             .ok_or_else(|| word(TaskName::NAMES, "task")),
+        Quantity::Split => SplitName::from_name(value)
+            .map(|v| Target::Word(Word::Split(v.into())))
+            .ok_or_else(|| word(SplitName::NAMES, "split")),
         Quantity::Variant => VariantName::from_name(value)
             .map(|v| Target::Word(Word::Variant(v.into())))
             .ok_or_else(|| word(VariantName::NAMES, "variant")),
@@ -197,5 +215,6 @@ pub fn value_text(value: crate::model::goal::Value) -> String {
         Value::Word(Word::Structure(s)) => stored(serde_json::to_value(StructureName::from(s))),
         Value::Word(Word::Task(t)) => stored(serde_json::to_value(TaskName::from(t))),
         Value::Word(Word::Variant(v)) => stored(serde_json::to_value(VariantName::from(v))),
+        Value::Word(Word::Split(v)) => stored(serde_json::to_value(SplitName::from(v))),
     }
 }

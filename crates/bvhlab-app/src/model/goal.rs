@@ -38,6 +38,13 @@ pub enum Quantity {
     Step,
     /// The ray direction's x, y or z component, as a unit vector.
     RayDirection(usize),
+    /// How the BVH splits its nodes.
+    Split,
+    /// The structure's SAH cost.
+    SahCost,
+    /// Predict's questions answered right (first time or after a hint) in the exercise of
+    /// the half shown.
+    Predicted,
     /// The ray origin's x, y or z.
     RayOrigin(usize),
 }
@@ -72,6 +79,8 @@ pub enum Word {
     Task(Task),
     /// A version of the algorithm.
     Variant(Variant),
+    /// A BVH split method.
+    Split(bvhlab::structure::SplitMethod),
 }
 
 /// What a quantity is compared with.
@@ -116,6 +125,17 @@ impl Goal {
     /// Whether the comparison holds in `lab` now (it does not while a value is unknown: no
     /// recording yet, no ray, no second lane).
     pub fn holds(&self, lab: &Lab) -> bool {
+        if self.quantity == Quantity::Predicted {
+            let Some(Value::Number(right)) = self.now(lab) else {
+                return false;
+            };
+            return match self.target {
+                Target::Number(n) => {
+                    compare(Value::Number(right), self.comparison, Value::Number(n))
+                }
+                _ => false,
+            };
+        }
         match lab.dimension() {
             Dimension::Two => self.holds_in(&lab.two().half, lab.two().prims().segments.len()),
             Dimension::Three => self.holds_in(&lab.three().half, lab.three().triangles().len()),
@@ -124,6 +144,12 @@ impl Goal {
 
     /// The quantity's value now, or `None` while unknown.
     pub fn now(&self, lab: &Lab) -> Option<Value> {
+        if self.quantity == Quantity::Predicted {
+            let score = lab.predict().score(&lab.exercise());
+            return Some(Value::Number(f64::from(
+                score.first_time + score.after_hint,
+            )));
+        }
         match lab.dimension() {
             Dimension::Two => read(
                 &lab.two().half,
@@ -210,6 +236,17 @@ fn read<P: LabPrimitive>(
             half.variant_for(lane.settings.kind),
         ))),
         Quantity::Primitives => number(primitives as u64),
+        Quantity::Split => Some(Value::Word(Word::Split(lane.settings.bvh_split))),
+        Quantity::SahCost => {
+            let built = lane
+                .structure
+                .as_ref()
+                .filter(|s| s.settings == lane.settings)?;
+            let cost = built.stats.sah_cost?;
+            Some(Value::Number(f64::from(cost)))
+        }
+        // Read from the lab, not a half (see `Goal::now`).
+        Quantity::Predicted => None,
         Quantity::Step => number(half.playback.shown(half.steps()) as u64),
         Quantity::Nodes => lane.marks().map(|m| Value::Number(m.nodes.len() as f64)),
         Quantity::NodesVisited => number(recording?.cost.nodes_visited),

@@ -26,6 +26,8 @@ pub struct Setup {
     pub structure: Option<StructureKind>,
     /// A second structure beside the first.
     pub compare: Option<StructureKind>,
+    /// How a BVH splits its nodes (the structure's and the comparison's).
+    pub split: Option<bvhlab::structure::SplitMethod>,
     /// The ray: `x,y,dx,dy` in 2D or `x,y,z,dx,dy,dz` in 3D.
     pub ray: Option<Vec<f32>>,
     /// The query point: `x,y` or `x,y,z`.
@@ -64,7 +66,12 @@ impl Lab {
         } else {
             self.two().half.lane.settings
         };
-        if let Some(kind) = setup.structure {
+        let settings = super::structures::BuildSettings {
+            bvh_split: setup.split.unwrap_or(settings.bvh_split),
+            ..settings
+        };
+        if setup.structure.is_some() || setup.split.is_some() {
+            let kind = setup.structure.unwrap_or(settings.kind);
             apply(
                 self,
                 HalfAction::SetStructure(super::structures::BuildSettings { kind, ..settings })
