@@ -9,7 +9,7 @@ use crate::persist::{STORAGE_KEY, SplitName, StructureName, TaskName, VariantNam
 pub use crate::ui_state::PanelsShown as Panels;
 
 /// The parameters the lab reads, with what each does (the README's table is this list).
-pub const PARAMETERS: [(&str, &str); 15] = [
+pub const PARAMETERS: [(&str, &str); 16] = [
     (
         "preset",
         "a 2D scene: one of the presets' slugs (kd-tree, quadtree, 10k, ...)",
@@ -43,6 +43,10 @@ pub const PARAMETERS: [(&str, &str); 15] = [
         "the algorithm's version: full, lecture (the slide's pseudocode), lecture-pruned",
     ),
     ("point", "the query point: x,y in 2D or x,y,z in 3D"),
+    (
+        "obbs",
+        "the separating-axis demo's two boxes (2D): for each, centre x,y, half width, half height, angle in degrees (10 numbers)",
+    ),
     (
         "step",
         "the playback step to show (0 is the start); with lesson, the lesson's step (1 is its first)",
@@ -92,6 +96,8 @@ pub struct StartParams {
     pub lesson: Option<String>,
     /// `point=`: 2 or 3 numbers.
     pub point: Option<Vec<f32>>,
+    /// `obbs=`: the two boxes of the separating-axis demo, 5 numbers each.
+    pub obbs: Option<Vec<f32>>,
     /// `step=`.
     pub step: Option<usize>,
     /// `panels=`: which of the controls, the stepper and the tree diagram are shown.
@@ -216,6 +222,7 @@ impl StartParams {
             "lesson" => self.lesson = Some(value.to_owned()),
             "ray" => self.ray = Some(numbers("ray", value, &[4, 6])?),
             "point" => self.point = Some(numbers("point", value, &[2, 3])?),
+            "obbs" => self.obbs = Some(numbers("obbs", value, &[10])?),
             "step" => {
                 self.step = Some(value.parse().map_err(|_| {
                     format!(
@@ -268,7 +275,11 @@ impl StartParams {
         if let Some(t) = self.task {
             parts.push(format!("task={}", stored_name(&t)));
         }
-        for (name, list) in [("ray", &self.ray), ("point", &self.point)] {
+        for (name, list) in [
+            ("ray", &self.ray),
+            ("point", &self.point),
+            ("obbs", &self.obbs),
+        ] {
             if let Some(list) = list {
                 let text: Vec<String> = list.iter().map(f32::to_string).collect();
                 parts.push(format!("{name}={}", text.join(",")));
@@ -300,6 +311,7 @@ impl StartParams {
             split: self.split.map(Into::into),
             ray: self.ray.clone(),
             point: self.point.clone(),
+            obbs: self.obbs.clone(),
             task: self.task.map(Into::into),
             variant: self.variant.map(Into::into),
             // With a lesson, `step=` is the lesson's step.

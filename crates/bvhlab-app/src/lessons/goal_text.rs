@@ -7,7 +7,7 @@ use crate::model::goal::{Comparison, Goal, Quantity, Target, Word};
 use crate::persist::{SplitName, StructureName, TaskName, VariantName};
 
 /// The quantities a goal reads, with what each is (the lessons' README lists these).
-pub const QUANTITIES: [(&str, Quantity, &str); 19] = [
+pub const QUANTITIES: [(&str, Quantity, &str); 20] = [
     (
         "answer",
         Quantity::Answer,
@@ -79,6 +79,11 @@ pub const QUANTITIES: [(&str, Quantity, &str); 19] = [
         "predicted",
         Quantity::Predicted,
         "Predict's questions answered right (first time or after a hint) in this exercise",
+    ),
+    (
+        "separating-axes",
+        Quantity::SeparatingAxes,
+        "how many axes separate the two boxes of the separating-axis demo (0: they overlap)",
     ),
     ("ray-x", Quantity::RayOrigin(0), "the ray origin's x"),
     ("ray-y", Quantity::RayOrigin(1), "the ray origin's y"),

@@ -45,6 +45,9 @@ pub enum Quantity {
     /// Predict's questions answered right (first time or after a hint) in the exercise of
     /// the half shown.
     Predicted,
+    /// How many of the separating-axis demo's axes separate its two boxes (2D; 0: they
+    /// overlap).
+    SeparatingAxes,
     /// The ray origin's x, y or z.
     RayOrigin(usize),
 }
@@ -125,7 +128,10 @@ impl Goal {
     /// Whether the comparison holds in `lab` now (it does not while a value is unknown: no
     /// recording yet, no ray, no second lane).
     pub fn holds(&self, lab: &Lab) -> bool {
-        if self.quantity == Quantity::Predicted {
+        if matches!(
+            self.quantity,
+            Quantity::Predicted | Quantity::SeparatingAxes
+        ) {
             let Some(Value::Number(right)) = self.now(lab) else {
                 return false;
             };
@@ -149,6 +155,14 @@ impl Goal {
             return Some(Value::Number(f64::from(
                 score.first_time + score.after_hint,
             )));
+        }
+        if self.quantity == Quantity::SeparatingAxes {
+            let pair = lab
+                .two()
+                .obb_pair
+                .filter(|_| lab.dimension() == Dimension::Two)?;
+            let separating = pair.tests().iter().filter(|t| t.separates()).count();
+            return Some(Value::Number(separating as f64));
         }
         match lab.dimension() {
             Dimension::Two => read(
@@ -246,7 +260,7 @@ fn read<P: LabPrimitive>(
             Some(Value::Number(f64::from(cost)))
         }
         // Read from the lab, not a half (see `Goal::now`).
-        Quantity::Predicted => None,
+        Quantity::Predicted | Quantity::SeparatingAxes => None,
         Quantity::Step => number(half.playback.shown(half.steps()) as u64),
         Quantity::Nodes => lane.marks().map(|m| Value::Number(m.nodes.len() as f64)),
         Quantity::NodesVisited => number(recording?.cost.nodes_visited),

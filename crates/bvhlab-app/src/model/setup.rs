@@ -12,6 +12,8 @@ use super::mesh::MeshSource;
 use super::presets::Preset;
 use super::question::{Task, Variant};
 use super::structures::StructureKind;
+use super::tools::Tool;
+use super::volumes::{BoxPose, ObbPair};
 use super::{Action, Action2d, Action3d, Dimension, HalfAction, Lab, PlaybackAction};
 
 /// Where the lab starts: each part that is `Some` is put in place, in the order of the
@@ -30,6 +32,9 @@ pub struct Setup {
     pub split: Option<bvhlab::structure::SplitMethod>,
     /// The ray: `x,y,dx,dy` in 2D or `x,y,z,dx,dy,dz` in 3D.
     pub ray: Option<Vec<f32>>,
+    /// The separating-axis demo's two boxes (2D): for each, centre, half extents and angle
+    /// in degrees.
+    pub obbs: Option<Vec<f32>>,
     /// The query point: `x,y` or `x,y,z`.
     pub point: Option<Vec<f32>>,
     /// What is stepped through.
@@ -125,6 +130,9 @@ impl Lab {
                 Err(e) => problems.push(e),
             }
         }
+        if let Some(numbers) = &setup.obbs {
+            problems.extend(self.place_obbs(numbers, three, source));
+        }
         if let Some(task) = setup.task {
             apply(self, HalfAction::SetTask(task).into(), &mut problems);
         }
@@ -165,4 +173,52 @@ fn ray3(n: &[f32]) -> Result<Ray3, String> {
         ));
     };
     Ray3::new(Vec3::new(x, y, z), Vec3::new(dx, dy, dz)).map_err(|e| format!("cannot be used: {e}"))
+}
+
+impl Lab {
+    /// Shows the separating-axis demo with the boxes `numbers` give; what went wrong, one
+    /// sentence each.
+    fn place_obbs(&mut self, numbers: &[f32], three: bool, source: &str) -> Vec<String> {
+        if three {
+            return vec![format!(
+                "{source}'s obbs are the 2D view's separating-axis boxes; the 3D view has none"
+            )];
+        }
+        let pair = match obb_pair(numbers) {
+            Ok(pair) => pair,
+            Err(e) => return vec![format!("{source}'s obbs {e}")],
+        };
+        [Action2d::SetTool(Tool::Obb), Action2d::SetObbPair(pair)]
+            .into_iter()
+            .filter_map(|a| self.apply(a.into()).err())
+            .map(|e| format!("{source}: {e}"))
+            .collect()
+    }
+}
+
+/// The separating-axis demo's boxes from 10 numbers: for each, centre x and y, half width and
+/// height (positive), and angle in degrees.
+fn obb_pair(numbers: &[f32]) -> Result<ObbPair, String> {
+    let pose = |n: &[f32]| -> Result<BoxPose, String> {
+        let &[x, y, w, h, degrees] = n else {
+            return Err(format!("take 10 numbers, not {}", numbers.len()));
+        };
+        if !(w > 0.0 && h > 0.0) {
+            return Err(format!(
+                "have a box of half size {w} by {h}; half sizes must be more than 0"
+            ));
+        }
+        Ok(BoxPose {
+            center: Vec2::new(x, y),
+            half: Vec2::new(w, h),
+            angle: degrees.to_radians(),
+        })
+    };
+    if numbers.len() != 10 {
+        return Err(format!("take 10 numbers, not {}", numbers.len()));
+    }
+    Ok(ObbPair {
+        a: pose(&numbers[..5])?,
+        b: pose(&numbers[5..])?,
+    })
 }
