@@ -262,7 +262,7 @@ async function courseProgress(context, summary) {
     null, { timeout: 20_000 });
   summary.courseReady = seconds(Date.now() - started);
   const opened = await page.evaluate(() => window.progress.at(-1));
-  check(!opened.goal_reached && opened.steps === 2 && opened.goals === 2 && opened.goals_reached === 0,
+  check(!opened.goal_reached && opened.steps === 3 && opened.goals === 3 && opened.goals_reached === 0,
     `the lesson opened, nothing done yet: ${JSON.stringify(opened)}`);
   // What the student does (here through the scripting API): a ray straight up, x_d = 0,
   // through the triangle at the bottom left.
@@ -278,9 +278,9 @@ async function courseProgress(context, summary) {
   const refused = await page.evaluate(() => window.lab.goToLesson('slab-tset', 1).then(() => null, (e) => e.message));
   check(refused?.includes('slab-test'), `an unknown lesson is refused with the names: ${refused}`);
   const listed = await page.$$eval('#progress li', (items) => items.map((li) => li.textContent));
-  check(listed.some((t) => t.includes('slab-test, step 1 of 2: done (1 of 2')), `the page lists the step done: ${JSON.stringify(listed)}`);
+  check(listed.some((t) => t.includes('slab-test, step 1 of 3: done (1 of 3')), `the page lists the step done: ${JSON.stringify(listed)}`);
   const spoken = await page.frames()[1].evaluate(() => document.getElementById('lab-status').textContent);
-  check(spoken.includes('step 2 of 2') && spoken.includes('Task:'), `the live region says the step and task: ${spoken}`);
+  check(spoken.includes('step 2 of 3') && spoken.includes('Task:'), `the live region says the step and task: ${spoken}`);
   await page.screenshot({ path: join(outDir, 'embed-course.png') });
   const csp = await violations(page);
   check(csp.length === 0, `no CSP violations: ${JSON.stringify(csp)}`);
