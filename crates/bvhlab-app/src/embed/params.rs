@@ -9,7 +9,7 @@ use crate::persist::{STORAGE_KEY, SplitName, StructureName, TaskName, VariantNam
 pub use crate::ui_state::PanelsShown as Panels;
 
 /// The parameters the lab reads, with what each does (the README's table is this list).
-pub const PARAMETERS: [(&str, &str); 16] = [
+pub const PARAMETERS: [(&str, &str); 17] = [
     (
         "preset",
         "a 2D scene: one of the presets' slugs (kd-tree, quadtree, 10k, ...)",
@@ -43,6 +43,10 @@ pub const PARAMETERS: [(&str, &str); 16] = [
         "the algorithm's version: full, lecture (the slide's pseudocode), lecture-pruned",
     ),
     ("point", "the query point: x,y in 2D or x,y,z in 3D"),
+    (
+        "polygon",
+        "adds a polygon to the 2D scene and selects it: its corners x1,y1,x2,y2,... (3 to 64)",
+    ),
     (
         "obbs",
         "the separating-axis demo's two boxes (2D): for each, centre x,y, half width, half height, angle in degrees (10 numbers)",
@@ -96,6 +100,8 @@ pub struct StartParams {
     pub lesson: Option<String>,
     /// `point=`: 2 or 3 numbers.
     pub point: Option<Vec<f32>>,
+    /// `polygon=`: a polygon's corners, 2 numbers each.
+    pub polygon: Option<Vec<f32>>,
     /// `obbs=`: the two boxes of the separating-axis demo, 5 numbers each.
     pub obbs: Option<Vec<f32>>,
     /// `step=`.
@@ -223,6 +229,10 @@ impl StartParams {
             "ray" => self.ray = Some(numbers("ray", value, &[4, 6])?),
             "point" => self.point = Some(numbers("point", value, &[2, 3])?),
             "obbs" => self.obbs = Some(numbers("obbs", value, &[10])?),
+            "polygon" => {
+                let counts: Vec<usize> = (3..=64).map(|corners| 2 * corners).collect();
+                self.polygon = Some(numbers("polygon", value, &counts)?);
+            }
             "step" => {
                 self.step = Some(value.parse().map_err(|_| {
                     format!(
@@ -279,6 +289,7 @@ impl StartParams {
             ("ray", &self.ray),
             ("point", &self.point),
             ("obbs", &self.obbs),
+            ("polygon", &self.polygon),
         ] {
             if let Some(list) = list {
                 let text: Vec<String> = list.iter().map(f32::to_string).collect();
@@ -312,6 +323,7 @@ impl StartParams {
             ray: self.ray.clone(),
             point: self.point.clone(),
             obbs: self.obbs.clone(),
+            polygon: self.polygon.clone(),
             task: self.task.map(Into::into),
             variant: self.variant.map(Into::into),
             // With a lesson, `step=` is the lesson's step.

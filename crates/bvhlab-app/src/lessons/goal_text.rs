@@ -3,11 +3,13 @@
 //! [`QUANTITIES`] lists the quantities; a line that does not read is refused with what was
 //! expected.
 
+use bvhlab::FitKind;
+
 use crate::model::goal::{Comparison, Goal, Quantity, Target, Word};
 use crate::persist::{SplitName, StructureName, TaskName, VariantName};
 
 /// The quantities a goal reads, with what each is (the lessons' README lists these).
-pub const QUANTITIES: [(&str, Quantity, &str); 20] = [
+pub const QUANTITIES: [(&str, Quantity, &str); 25] = [
     (
         "answer",
         Quantity::Answer,
@@ -84,6 +86,31 @@ pub const QUANTITIES: [(&str, Quantity, &str); 20] = [
         "separating-axes",
         Quantity::SeparatingAxes,
         "how many axes separate the two boxes of the separating-axis demo (0: they overlap)",
+    ),
+    (
+        "tightness-sphere",
+        Quantity::Tightness(FitKind::SphereCentroid),
+        "the selection's convex hull area over its centroid sphere's, 0 to 1 (2D)",
+    ),
+    (
+        "tightness-ritter",
+        Quantity::Tightness(FitKind::SphereRitter),
+        "the hull's area over Ritter's sphere's (2D)",
+    ),
+    (
+        "tightness-welzl",
+        Quantity::Tightness(FitKind::SphereWelzl),
+        "the hull's area over Welzl's minimal sphere's (2D)",
+    ),
+    (
+        "tightness-aabb",
+        Quantity::Tightness(FitKind::Aabb),
+        "the hull's area over the AABB's (2D)",
+    ),
+    (
+        "tightness-obb",
+        Quantity::Tightness(FitKind::Obb),
+        "the hull's area over the PCA OBB's (2D)",
     ),
     ("ray-x", Quantity::RayOrigin(0), "the ray origin's x"),
     ("ray-y", Quantity::RayOrigin(1), "the ray origin's y"),

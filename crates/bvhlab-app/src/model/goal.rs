@@ -48,6 +48,9 @@ pub enum Quantity {
     /// How many of the separating-axis demo's axes separate its two boxes (2D; 0: they
     /// overlap).
     SeparatingAxes,
+    /// How tightly a bounding volume of the 2D selection fits: the convex hull's area over
+    /// the volume's, in (0, 1].
+    Tightness(bvhlab::FitKind),
     /// The ray origin's x, y or z.
     RayOrigin(usize),
 }
@@ -128,19 +131,11 @@ impl Goal {
     /// Whether the comparison holds in `lab` now (it does not while a value is unknown: no
     /// recording yet, no ray, no second lane).
     pub fn holds(&self, lab: &Lab) -> bool {
-        if matches!(
-            self.quantity,
-            Quantity::Predicted | Quantity::SeparatingAxes
-        ) {
-            let Some(Value::Number(right)) = self.now(lab) else {
+        if self.quantity.of_lab() {
+            let (Some(value), Target::Number(n)) = (self.now(lab), self.target) else {
                 return false;
             };
-            return match self.target {
-                Target::Number(n) => {
-                    compare(Value::Number(right), self.comparison, Value::Number(n))
-                }
-                _ => false,
-            };
+            return compare(value, self.comparison, Value::Number(n));
         }
         match lab.dimension() {
             Dimension::Two => self.holds_in(&lab.two().half, lab.two().prims().segments.len()),
@@ -150,19 +145,8 @@ impl Goal {
 
     /// The quantity's value now, or `None` while unknown.
     pub fn now(&self, lab: &Lab) -> Option<Value> {
-        if self.quantity == Quantity::Predicted {
-            let score = lab.predict().score(&lab.exercise());
-            return Some(Value::Number(f64::from(
-                score.first_time + score.after_hint,
-            )));
-        }
-        if self.quantity == Quantity::SeparatingAxes {
-            let pair = lab
-                .two()
-                .obb_pair
-                .filter(|_| lab.dimension() == Dimension::Two)?;
-            let separating = pair.tests().iter().filter(|t| t.separates()).count();
-            return Some(Value::Number(separating as f64));
+        if self.quantity.of_lab() {
+            return lab_value(lab, self.quantity);
         }
         match lab.dimension() {
             Dimension::Two => read(
@@ -205,6 +189,35 @@ impl Goal {
         };
         compare(value, self.comparison, target)
     }
+}
+
+impl Quantity {
+    /// Whether it is read from the whole lab (Predict, the 2D half's volumes), not from the
+    /// structures of the half shown.
+    fn of_lab(self) -> bool {
+        matches!(
+            self,
+            Self::Predicted | Self::SeparatingAxes | Self::Tightness(_)
+        )
+    }
+}
+
+/// A quantity read from the whole lab (see [`Quantity::of_lab`]).
+fn lab_value(lab: &Lab, quantity: Quantity) -> Option<Value> {
+    let two = Some(lab.two()).filter(|_| lab.dimension() == Dimension::Two);
+    let number = match quantity {
+        Quantity::Predicted => {
+            let score = lab.predict().score(&lab.exercise());
+            f64::from(score.first_time + score.after_hint)
+        }
+        Quantity::SeparatingAxes => {
+            let pair = two?.obb_pair?;
+            pair.tests().iter().filter(|t| t.separates()).count() as f64
+        }
+        Quantity::Tightness(kind) => f64::from(two?.fits()?.report.get(kind)?.tightness?),
+        _ => return None,
+    };
+    Some(Value::Number(number))
 }
 
 /// `value` compared with `target`; words compare only for (in)equality.
@@ -260,7 +273,7 @@ fn read<P: LabPrimitive>(
             Some(Value::Number(f64::from(cost)))
         }
         // Read from the lab, not a half (see `Goal::now`).
-        Quantity::Predicted | Quantity::SeparatingAxes => None,
+        Quantity::Predicted | Quantity::SeparatingAxes | Quantity::Tightness(_) => None,
         Quantity::Step => number(half.playback.shown(half.steps()) as u64),
         Quantity::Nodes => lane.marks().map(|m| Value::Number(m.nodes.len() as f64)),
         Quantity::NodesVisited => number(recording?.cost.nodes_visited),

@@ -32,6 +32,8 @@ pub struct Setup {
     pub split: Option<bvhlab::structure::SplitMethod>,
     /// The ray: `x,y,dx,dy` in 2D or `x,y,z,dx,dy,dz` in 3D.
     pub ray: Option<Vec<f32>>,
+    /// A polygon added to the 2D scene and selected: its corners, 2 numbers each.
+    pub polygon: Option<Vec<f32>>,
     /// The separating-axis demo's two boxes (2D): for each, centre, half extents and angle
     /// in degrees.
     pub obbs: Option<Vec<f32>>,
@@ -130,6 +132,9 @@ impl Lab {
                 Err(e) => problems.push(e),
             }
         }
+        if let Some(numbers) = &setup.polygon {
+            problems.extend(self.add_polygon(numbers, three, source));
+        }
         if let Some(numbers) = &setup.obbs {
             problems.extend(self.place_obbs(numbers, three, source));
         }
@@ -176,6 +181,33 @@ fn ray3(n: &[f32]) -> Result<Ray3, String> {
 }
 
 impl Lab {
+    /// Adds the polygon with corners `numbers` (x, y pairs) to the 2D scene and selects it;
+    /// what went wrong, one sentence each.
+    fn add_polygon(&mut self, numbers: &[f32], three: bool, source: &str) -> Vec<String> {
+        if three {
+            return vec![format!(
+                "{source}'s polygon is drawn in the 2D view; the 3D view shows a mesh"
+            )];
+        }
+        let points = numbers
+            .chunks_exact(2)
+            .map(|xy| Vec2::new(xy[0], xy[1]))
+            .collect();
+        let add = Action2d::AddShape {
+            kind: super::scene::ShapeKind::Polygon,
+            points,
+        };
+        if let Err(e) = self.apply(add.into()) {
+            return vec![format!("{source}: {e}")];
+        }
+        let added = self.two().scene.shapes().len() - 1;
+        self.apply(Action2d::Select(vec![added]).into())
+            .err()
+            .map(|e| format!("{source}: {e}"))
+            .into_iter()
+            .collect()
+    }
+
     /// Shows the separating-axis demo with the boxes `numbers` give; what went wrong, one
     /// sentence each.
     fn place_obbs(&mut self, numbers: &[f32], three: bool, source: &str) -> Vec<String> {
