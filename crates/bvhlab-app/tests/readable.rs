@@ -9,7 +9,8 @@ use bvhlab::glam::Vec2;
 use bvhlab::structure::SplitMethod;
 use bvhlab_app::LabApp;
 use bvhlab_app::model::lab2d::RayHandles;
-use bvhlab_app::model::{Action2d, HalfAction, PlaybackAction};
+use bvhlab_app::model::presets::Preset;
+use bvhlab_app::model::{Action2d, HalfAction, Lab, PlaybackAction};
 use bvhlab_app::pseudocode::Task;
 use bvhlab_app::theme::{AA_CONTRAST, contrast};
 use common::{Painted, act, lab, painted, settle};
@@ -20,9 +21,10 @@ use egui_kittest::kittest::{NodeT, Queryable};
 
 /// The lab with the default ray across the default scene, stepped to step 4.
 fn stepped(size: egui::Vec2) -> Harness<'static, LabApp> {
-    let mut h = Harness::builder()
-        .with_size(size)
-        .build_ui_state(|ui, app: &mut LabApp| app.show(ui), LabApp::default());
+    let mut h = Harness::builder().with_size(size).build_ui_state(
+        |ui, app: &mut LabApp| app.show(ui),
+        LabApp::new(Lab::with_preset(Preset::RandomSegments)),
+    );
     h.run();
     act(
         &mut h,
@@ -100,8 +102,8 @@ fn every_text_is_11_points_or_more_and_the_listing_is_aa_in_both_themes() {
     }
 }
 
-/// The screen rect of the one label reading exactly `text` in the right half of the window
-/// (the "Step through" panel; the controls have counters of their own).
+/// The screen rect of the one label reading exactly `text` right of `middle` (the "Step
+/// through" panel; the controls have counters of their own).
 fn label_rect(h: &Harness<'_, LabApp>, text: &str, middle: f32) -> Rect {
     let found: Vec<Rect> = h
         .query_all_by_role(Role::Label)
@@ -120,11 +122,12 @@ fn label_rect(h: &Harness<'_, LabApp>, text: &str, middle: f32) -> Rect {
 
 #[test]
 fn at_800_by_500_the_step_its_counters_and_the_brute_force_column_are_in_view_together() {
-    let h = stepped(vec2(800.0, 500.0));
-    // The view between the panels keeps a third of the window (it was 70 px wide).
+    let mut h = stepped(vec2(800.0, 500.0));
+    // The view keeps most of the width: the controls and "Step through" share one panel,
+    // as tabs (side by side they left the view a third, and once 70 px).
     let view = h.state().canvas_screen().rect;
     assert!(
-        view.width() >= 800.0 / 3.0,
+        view.width() >= 800.0 / 2.0,
         "the view is {} px wide at 800x500",
         view.width()
     );
@@ -134,9 +137,21 @@ fn at_800_by_500_the_step_its_counters_and_the_brute_force_column_are_in_view_to
         "the view is {} px tall at 800x500",
         view.height()
     );
-    // The panel's view ends where the status line (with its "Controls" switch) starts.
-    let status = h.get_by_label("Controls").rect();
-    let visible = Rect::from_min_max(pos2(0.0, 0.0), pos2(800.0, status.min.y));
+    // The "Step through" tab, chosen on the status line.
+    let tab = h
+        .get_all_by_label("Step through")
+        .max_by(|a, b| a.rect().min.y.total_cmp(&b.rect().min.y))
+        .expect("the status line's tab")
+        .rect();
+    common::click_at(&mut h, tab.center());
+    let view = h.state().canvas_screen().rect;
+    // The panel's view ends where the status line (with its "Controls" tab) starts.
+    let status = h
+        .get_all_by_label("Controls")
+        .map(|n| n.rect())
+        .max_by(|a, b| a.min.y.total_cmp(&b.min.y))
+        .expect("the status line's Controls tab");
+    let visible = Rect::from_min_max(pos2(0.0, 0.0), pos2(view.left(), status.min.y));
     let step = h
         .query_all_by_role(Role::Label)
         .find(|n| {
@@ -146,18 +161,18 @@ fn at_800_by_500_the_step_its_counters_and_the_brute_force_column_are_in_view_to
         })
         .expect("the step's sentence")
         .rect();
-    let brute = label_rect(&h, "brute force", 400.0);
-    let last_row = label_rect(&h, "primitive tests", 400.0);
-    // Nothing of the panel spills left over the view (a row wider than the panel pushed
-    // its contents out on both sides).
+    let brute = label_rect(&h, "brute force", -1.0);
+    let last_row = label_rect(&h, "primitive tests", -1.0);
+    // Nothing of the panel spills right over the view (a row wider than the panel pushed
+    // its contents out).
     for text in painted(&h) {
-        if text.rect.center().x > view.right() && text.rect.center().y < status.min.y {
+        if text.rect.center().x < view.left() && text.rect.center().y < status.min.y {
             assert!(
-                text.rect.min.x >= view.right() - 1.0,
-                "{:?} at {:?} starts left of the panel (the view ends at {})",
+                text.rect.max.x <= view.left() + 1.0 || !text.clip.intersects(view),
+                "{:?} at {:?} reaches over the view (it starts at {})",
                 text.text,
                 text.rect,
-                view.right()
+                view.left()
             );
         }
     }

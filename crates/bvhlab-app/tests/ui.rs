@@ -86,6 +86,30 @@ fn empty_margin(h: &Harness<'_, LabApp>, dy: f32) -> Pos2 {
 }
 
 #[test]
+fn a_first_visit_opens_on_a_lecture_figure_and_offers_the_first_lesson() {
+    let h = fresh_lab();
+    let two = h.state().lab().two();
+    // A handful of shapes under an AABB tree small enough to read every box and node.
+    assert_eq!(two.preset, bvhlab_app::model::presets::Preset::BvhHandful);
+    assert!(
+        (5..=20).contains(&two.scene.shapes().len()),
+        "{} shapes",
+        two.scene.shapes().len()
+    );
+    assert_eq!(two.half.lane.settings.kind, StructureKind::AabbTree);
+    let nodes = two.half.lane.structure.as_ref().expect("built").stats.nodes;
+    assert!(nodes <= 64, "{nodes} nodes");
+    assert_eq!(
+        h.get_by_label("Preset").accesskit_node().value(),
+        Some("AABB tree on a handful of shapes (§3)".to_owned())
+    );
+    // The Lessons panel says what a lesson is and offers the first one.
+    label_containing(&h, "New here? A lesson walks the lecture");
+    let first = h.get_by_label("1. §1 Queries: why not test every primitive?");
+    assert_eq!(first.accesskit_node().role(), Role::Button);
+}
+
+#[test]
 fn start_up_and_a_dragged_ray_show_the_core_answer_and_its_cost() {
     let mut h = lab();
     // Start-up: the default scene, structure and tool, and the panels say so.

@@ -110,7 +110,7 @@ impl Lab {
 
     /// Brings what is derived from both halves up to date (3D builds advance only on
     /// [`Action::Tick`]).
-    fn refresh(&mut self) {
+    pub(super) fn refresh(&mut self) {
         self.two.refresh();
         self.three.refresh(BuildBudget::None);
     }

@@ -110,7 +110,13 @@ pub struct Lab2d {
 
 impl Default for Lab2d {
     fn default() -> Self {
-        let preset = Preset::default();
+        Self::with_preset(Preset::default())
+    }
+}
+
+impl Lab2d {
+    /// The 2D half opened on `preset`, with nothing to undo.
+    pub fn with_preset(preset: Preset) -> Self {
         let (scene, settings) = preset.build();
         Self {
             scene,

@@ -91,6 +91,19 @@ pub struct Lab {
 }
 
 impl Lab {
+    /// A lab whose 2D half opens on `preset` (the default lab opens on [`Preset::default`]),
+    /// with nothing to undo.
+    ///
+    /// [`Preset::default`]: presets::Preset
+    pub fn with_preset(preset: presets::Preset) -> Self {
+        let mut lab = Self {
+            two: Lab2d::with_preset(preset),
+            ..Self::default()
+        };
+        lab.refresh();
+        lab
+    }
+
     /// The half shown.
     pub fn dimension(&self) -> Dimension {
         self.dimension

@@ -13,12 +13,15 @@ pub enum Preset {
     BoundingVolumes,
     /// §3, uniform grid: a long triangle that lands in several cells ("Duplicate Triangle").
     DuplicateTriangle,
+    /// §3: an AABB tree on a handful of shapes, as the lecture draws a BVH: the scene the lab
+    /// opens with (small enough to read every box and node).
+    #[default]
+    BvhHandful,
     /// §3: a k-d tree on a handful of shapes.
     KdHandful,
     /// §3: a quadtree on a handful of shapes.
     QuadtreeHandful,
-    /// 200 random segments: the scene the lab opens with.
-    #[default]
+    /// 200 random segments.
     RandomSegments,
     /// 300 random points.
     RandomPoints,
@@ -28,9 +31,10 @@ pub enum Preset {
 
 impl Preset {
     /// Every preset, in menu order.
-    pub const ALL: [Self; 7] = [
+    pub const ALL: [Self; 8] = [
         Self::BoundingVolumes,
         Self::DuplicateTriangle,
+        Self::BvhHandful,
         Self::KdHandful,
         Self::QuadtreeHandful,
         Self::RandomSegments,
@@ -43,6 +47,7 @@ impl Preset {
         match self {
             Self::BoundingVolumes => "Bounding volumes compared (§2)",
             Self::DuplicateTriangle => "Duplicate triangle in a grid (§3)",
+            Self::BvhHandful => "AABB tree on a handful of shapes (§3)",
             Self::KdHandful => "k-d tree on a handful of shapes (§3)",
             Self::QuadtreeHandful => "Quadtree on a handful of shapes (§3)",
             Self::RandomSegments => "200 random segments",
@@ -56,6 +61,7 @@ impl Preset {
         match self {
             Self::BoundingVolumes => "bounding-volumes",
             Self::DuplicateTriangle => "duplicate-triangle",
+            Self::BvhHandful => "aabb-tree",
             Self::KdHandful => "kd-tree",
             Self::QuadtreeHandful => "quadtree",
             Self::RandomSegments => "random-segments",
@@ -79,6 +85,14 @@ impl Preset {
                 BuildSettings {
                     kind: StructureKind::Grid,
                     grid_cells: 4,
+                    ..settings
+                },
+            ),
+            Self::BvhHandful => (
+                handful(),
+                BuildSettings {
+                    kind: StructureKind::AabbTree,
+                    leaf_size: 1,
                     ..settings
                 },
             ),

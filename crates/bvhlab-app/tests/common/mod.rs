@@ -25,11 +25,24 @@ pub const COUNTER_NAMES: [&str; 6] = [
 /// A tall window, so that the whole control panel (down to the queries) is on screen.
 pub const WINDOW: egui::Vec2 = vec2(1800.0, 1800.0);
 
-/// The lab in a headless harness, after its first frames (the view is fitted to the scene).
+/// The lab in a headless harness, after its first frames (the view is fitted to the scene),
+/// on 200 random segments: the tests' scene (the lab itself opens on a handful of shapes,
+/// which [`fresh_lab`] starts with).
 pub fn lab() -> Harness<'static, LabApp> {
+    let lab =
+        bvhlab_app::model::Lab::with_preset(bvhlab_app::model::presets::Preset::RandomSegments);
+    harness(LabApp::new(lab))
+}
+
+/// The lab as a student's first visit opens it, in a headless harness.
+pub fn fresh_lab() -> Harness<'static, LabApp> {
+    harness(LabApp::default())
+}
+
+fn harness(app: LabApp) -> Harness<'static, LabApp> {
     let mut h = Harness::builder()
         .with_size(WINDOW)
-        .build_ui_state(|ui, app: &mut LabApp| app.show(ui), LabApp::default());
+        .build_ui_state(|ui, app: &mut LabApp| app.show(ui), app);
     h.run();
     h
 }
