@@ -1,7 +1,8 @@
 //! Criterion medians of issue 7's workload on the AABB tree over ogre.obj (124k triangles):
 //! the binned SAH build, ray first hit on coherent and incoherent rays, closest point, each
 //! unobserved (the fast walks) and, for rays, observed with the no-op observer (the walk the
-//! lab steps through); the collapse to the 4-wide tree (`Bvh4`) and its queries. Skipped, with a message, when the shared meshes are absent.
+//! lab steps through); the collapse to the 4-wide tree (`Bvh4`) and its queries; any hit (`t_max` infinite) in
+//! both trees on the same rays. Skipped, with a message, when the shared meshes are absent.
 //!
 //! Run: `cargo bench -p bvhlab --bench speed`.
 
@@ -48,6 +49,20 @@ fn speed(c: &mut Criterion) {
             b.iter(|| {
                 rays.iter()
                     .filter(|ray| wide.ray_first_hit(black_box(ray), f32::INFINITY).is_some())
+                    .count()
+            });
+        });
+        group.bench_function(format!("ray any hit, {name}"), |b| {
+            b.iter(|| {
+                rays.iter()
+                    .filter(|ray| tree.ray_any_hit(black_box(ray), f32::INFINITY).is_some())
+                    .count()
+            });
+        });
+        group.bench_function(format!("ray any hit 4-wide, {name}"), |b| {
+            b.iter(|| {
+                rays.iter()
+                    .filter(|ray| wide.ray_any_hit(black_box(ray), f32::INFINITY).is_some())
                     .count()
             });
         });
