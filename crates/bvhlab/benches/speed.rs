@@ -11,6 +11,7 @@ mod workload;
 
 use std::hint::black_box;
 
+use bvhlab::RangeShape;
 use bvhlab::prelude::*;
 use bvhlab::structure::bvh::Bvh4;
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
@@ -66,6 +67,20 @@ fn speed(c: &mut Criterion) {
                     .count()
             });
         });
+        group.bench_function(format!("ray all hits, {name}"), |b| {
+            b.iter(|| {
+                rays.iter()
+                    .map(|ray| tree.ray_all_hits(black_box(ray), f32::INFINITY).len())
+                    .sum::<usize>()
+            });
+        });
+        group.bench_function(format!("ray all hits 4-wide, {name}"), |b| {
+            b.iter(|| {
+                rays.iter()
+                    .map(|ray| wide.ray_all_hits(black_box(ray), f32::INFINITY).len())
+                    .sum::<usize>()
+            });
+        });
         group.bench_function(format!("ray first hit observed, {name}"), |b| {
             b.iter(|| {
                 rays.iter()
@@ -96,6 +111,45 @@ fn speed(c: &mut Criterion) {
                 .filter_map(|&p| wide.closest_point(black_box(p)))
                 .map(|n| n.distance)
                 .sum::<f32>()
+        });
+    });
+    // The k nearest and a ball around each point (its radius a hundredth of the box's
+    // diagonal), in both trees.
+    let radius = (bounds.max - bounds.min).length() * 0.01;
+    group.bench_function("8 nearest", |b| {
+        b.iter(|| {
+            points
+                .iter()
+                .map(|&p| tree.k_nearest(black_box(p), 8).len())
+                .sum::<usize>()
+        });
+    });
+    group.bench_function("8 nearest 4-wide", |b| {
+        b.iter(|| {
+            points
+                .iter()
+                .map(|&p| wide.k_nearest(black_box(p), 8).len())
+                .sum::<usize>()
+        });
+    });
+    let balls: Vec<RangeShape<_>> = points
+        .iter()
+        .map(|&p| RangeShape::Ball(Sphere3::new(p, radius)))
+        .collect();
+    group.bench_function("range ball", |b| {
+        b.iter(|| {
+            balls
+                .iter()
+                .map(|s| tree.range(black_box(s)).len())
+                .sum::<usize>()
+        });
+    });
+    group.bench_function("range ball 4-wide", |b| {
+        b.iter(|| {
+            balls
+                .iter()
+                .map(|s| wide.range(black_box(s)).len())
+                .sum::<usize>()
         });
     });
     group.finish();
