@@ -12,9 +12,11 @@ mod workload;
 use std::hint::black_box;
 
 use bvhlab::RangeShape;
+use bvhlab::glam::Vec3;
 use bvhlab::prelude::*;
 use bvhlab::structure::bvh::Bvh4;
-use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use criterion::measurement::WallTime;
+use criterion::{BenchmarkGroup, Criterion, Throughput, criterion_group, criterion_main};
 use workload::{camera_rays, random_points, random_rays, shared_mesh};
 
 fn speed(c: &mut Criterion) {
@@ -113,8 +115,19 @@ fn speed(c: &mut Criterion) {
                 .sum::<f32>()
         });
     });
-    // The k nearest and a ball around each point (its radius a hundredth of the box's
-    // diagonal), in both trees.
+    near_queries(&mut group, &tree, &wide, &points, &bounds);
+    group.finish();
+}
+
+/// The 8 nearest and a ball around each point (its radius a hundredth of the box's
+/// diagonal), in both trees.
+fn near_queries(
+    group: &mut BenchmarkGroup<'_, WallTime>,
+    tree: &AabbTree3,
+    wide: &Bvh4<Triangle3>,
+    points: &[Vec3],
+    bounds: &Aabb3,
+) {
     let radius = (bounds.max - bounds.min).length() * 0.01;
     group.bench_function("8 nearest", |b| {
         b.iter(|| {
@@ -152,7 +165,6 @@ fn speed(c: &mut Criterion) {
                 .sum::<usize>()
         });
     });
-    group.finish();
 }
 
 criterion_group!(benches, speed);
