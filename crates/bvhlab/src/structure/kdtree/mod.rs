@@ -4,7 +4,9 @@
 //! cell in two, down to small leaves. Primitives that straddle a plane are listed in both
 //! children. Two builders choose the planes ([`KdBuilder`]): the median of the primitives'
 //! centres (Bentley 1975), or the surface area heuristic with pbrt-v3's cost model over sorted
-//! edge events (Wald and Havran 2006).
+//! edge events (Wald and Havran 2006). [`KdTree::build`] takes the SAH for segments and
+//! triangles and the median with small leaves for point clouds
+//! ([`KdTreeOptions::for_primitives`] says why).
 //!
 //! A k-d tree is a BSP tree whose planes are axis-aligned, so its queries are the BSP tree's,
 //! in [`super::plane_tree`] (the k-d traversal is [`plane_tree::ray`]): this type only says
@@ -63,9 +65,10 @@ pub struct KdTree<P: Primitive> {
 }
 
 impl<P: Primitive> KdTree<P> {
-    /// Builds the tree with [`KdTreeOptions::default`] (SAH).
+    /// Builds the tree with [`KdTreeOptions::for_primitives`]: the SAH builder over segments
+    /// and triangles, the median builder with small leaves over points.
     pub fn build(prims: &[P]) -> Self {
-        Self::with_options(prims, &KdTreeOptions::default())
+        Self::with_options(prims, &KdTreeOptions::for_primitives(prims))
     }
 
     /// Builds the tree with the given options.

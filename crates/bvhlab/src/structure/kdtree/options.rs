@@ -1,5 +1,7 @@
 //! How a k-d tree is built: which builder, and when to stop splitting.
 
+use crate::{Primitive, Vector};
+
 /// How the median builder picks a node's split axis.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum AxisRule {
@@ -64,13 +66,44 @@ pub struct KdTreeOptions {
 }
 
 impl Default for KdTreeOptions {
-    /// The SAH builder with pbrt's costs, splitting down to one primitive where it pays.
+    /// The SAH builder with pbrt's costs, splitting down to one primitive where it pays
+    /// (for segments and triangles: [`KdTree::build`](super::KdTree::build) picks by the
+    /// primitives, [`for_primitives`](Self::for_primitives)).
     fn default() -> Self {
         Self::sah()
     }
 }
 
 impl KdTreeOptions {
+    /// The options [`KdTree::build`](super::KdTree::build) uses for `prims`: the median
+    /// builder with leaves of up to 4 ([`median`](Self::median), longest axis) when every
+    /// primitive is a point (its box a single point), the SAH builder ([`sah`](Self::sah))
+    /// otherwise.
+    ///
+    /// A point cloud is searched for nearest neighbours, and the median split on the longest
+    /// axis with small buckets is the k-d tree built for that (Friedman, Bentley and Finkel,
+    /// "An Algorithm for Finding Best Matches in Logarithmic Expected Time", ACM TOMS 1977).
+    /// The SAH's cost model is one of rays (a cell's surface area is the chance a ray meets
+    /// it), and over points its empty-space bonus misleads it: every cell has a gap between
+    /// each face and its nearest point, and cutting that gap off as an empty child earns the
+    /// bonus (half the cost), more than a real split can save (at most a third of a cube's
+    /// area). So the SAH tree over 200k random points cut empty slivers off its cells until
+    /// the depth limit (31 levels): 2908 empty leaves and 852 of 32 points or more, a mean
+    /// of 228 points per non-empty leaf, and closest points about 20 times slower than the
+    /// [`Bvh4`](crate::structure::bvh::Bvh4)'s. The median tree has leaves of 2 to 4.
+    pub fn for_primitives<P: Primitive>(prims: &[P]) -> Self {
+        // A primitive with a non-finite coordinate is not stored: it does not count.
+        let is_point = |p: &P| {
+            let b = p.bounds();
+            b.min == b.max || !(b.min.is_finite() && b.max.is_finite())
+        };
+        if !prims.is_empty() && prims.iter().all(is_point) {
+            Self::median(AxisRule::LongestAxis)
+        } else {
+            Self::sah()
+        }
+    }
+
     /// The SAH builder with pbrt-v3's costs and leaf size 1 (the cost model decides).
     pub fn sah() -> Self {
         Self {

@@ -1,15 +1,29 @@
-//! The 4-wide copy of a built AABB tree, [`Bvh4`]: the fastest unobserved first hits and
-//! closest points, bit for bit the binary tree's answers.
+//! The 4-wide copy of a built AABB tree, [`Bvh4`]: the fastest unobserved queries, each
+//! answering as the binary tree does.
 //!
 //! - `layout.rs`: [`Bvh4`] and its 128-byte [`Bvh4Node`], and the collapse of a binary tree.
 //! - `ray.rs`: [`Bvh4::ray_first_hit`], four slab tests at once.
+//! - `any_all_hits.rs`: [`Bvh4::ray_any_hit`] and [`Bvh4::ray_all_hits`], the walk whose
+//!   limit stays `t_max`.
 //! - `nearest.rs`: [`Bvh4::closest_point`], four distance bounds at once.
-//! - `stack.rs`: the stack both walks share, sized per tree.
+//! - `k_nearest.rs`: [`Bvh4::k_nearest`], the same walk keeping the k best.
+//! - `range.rs`: [`Bvh4::range`], boxes and balls.
+//! - `stack.rs`: the stack the nearest-first walks share, sized per tree.
 //! - `refit.rs`: [`Bvh4::refit`] after the primitives moved, and the SAH cost it reports.
 //! - `validate.rs`: [`Bvh4::validate`], the invariants (every box inside its parent's).
+//!
+//! The wide tree answers what its callers ask most, without the lab's events: it does not
+//! implement [`SpatialIndex`](crate::structure::SpatialIndex), whose `_observed` forms
+//! report every node by its index and whose event grammar is written for binary nodes (a
+//! wide node's leaf lanes are no nodes at all), and it keeps no copy of the primitives in
+//! input order. Its queries are inherent methods with the trait's names and answers; the
+//! lab steps through the binary tree.
 
+mod any_all_hits;
+mod k_nearest;
 mod layout;
 mod nearest;
+mod range;
 mod ray;
 mod refit;
 mod stack;

@@ -38,7 +38,7 @@ use crate::{Primitive, Vector};
     reason = "the hot step of the walk: left out of line it costs a call per node (measured)"
 )]
 #[inline(always)]
-fn bound_lanes<const DIM: usize>(
+pub(super) fn bound_lanes<const DIM: usize>(
     node: &Bvh4Node,
     point: &[f32; 3],
     reach_sq: f32,
@@ -147,7 +147,7 @@ impl<P: Primitive> Bvh4<P> {
 
 /// The lanes of `node` that are leaves, as a bit set.
 #[inline]
-fn leaf_lanes(node: &Bvh4Node) -> u32 {
+pub(super) fn leaf_lanes(node: &Bvh4Node) -> u32 {
     let mut mask = 0;
     for (lane, &count) in node.count.iter().enumerate() {
         mask |= u32::from(count > 0) << lane;
@@ -157,7 +157,7 @@ fn leaf_lanes(node: &Bvh4Node) -> u32 {
 
 /// The lanes whose squared bound is not beyond `reach_sq`, as a bit set (NaN kept).
 #[inline]
-fn within(squared: &[f32; WIDTH], reach_sq: f32) -> u32 {
+pub(super) fn within(squared: &[f32; WIDTH], reach_sq: f32) -> u32 {
     let mut mask = 0;
     for (lane, &sq) in squared.iter().enumerate() {
         #[expect(clippy::neg_cmp_op_on_partial_ord, reason = "NaN must not prune")]

@@ -27,7 +27,7 @@ use crate::{Primitive, Ray, Vector};
 /// The ray as the four-lane test reads it: per axis, the slack-shifted origins and the
 /// inverse direction, and which planes it enters through (1, the `max` planes, where the
 /// direction is negative).
-struct LaneRay {
+pub(super) struct LaneRay {
     origin_near: [f32; 3],
     origin_far: [f32; 3],
     inv_dir: [f32; 3],
@@ -35,7 +35,7 @@ struct LaneRay {
 }
 
 impl LaneRay {
-    fn new<V: Vector>(prepared: &PreparedRay<V>) -> Self {
+    pub(super) fn new<V: Vector>(prepared: &PreparedRay<V>) -> Self {
         let (mut origin_near, mut origin_far, mut inv_dir) = ([0.0; 3], [0.0; 3], [0.0; 3]);
         for axis in 0..V::DIM {
             origin_near[axis] = prepared.origin_near.coord(axis);
@@ -62,7 +62,7 @@ impl LaneRay {
     reason = "the hot step of the walk: left out of line it costs a call per node (measured)"
 )]
 #[inline(always)]
-fn enter_lanes<const DIM: usize>(
+pub(super) fn enter_lanes<const DIM: usize>(
     node: &Bvh4Node,
     ray: &LaneRay,
     limit_grown: f32,
