@@ -24,7 +24,7 @@
 //! | --- | --- | --- | --- |
 //! | [`Bvh`](super::Bvh) (any volume) | [`refit`](super::Bvh::refit): O(nodes), topology kept (Wald, Boulos and Shirley 2007) | not for sphere and OBB trees (their volumes are fitted to every vertex below, so a change would refit O(n) vertices per ancestor): refit or rebuild | decays as primitives drift; [`needs_rebuild`](super::Bvh::needs_rebuild) says when |
 //! | AABB tree (`Bvh<Aabb<V>, P>`) | the same refit | [`Bvh::insert`](super::Bvh::insert), [`remove`](super::Bvh::remove), [`replace`](super::Bvh::replace): a branch-and-bound search for the cheapest place that visits O(log n) nodes on typical scenes (Bittner, Hapala and Havran 2013), then a splice into the depth-first arrays, which moves the nodes and leaf slots after the place (a memory move and one pass over the nodes, O(n) with a small constant) | SAH-greedy inserts; [`optimize_by_reinsertion`](super::Bvh::optimize_by_reinsertion) lowers the SAH cost in place and never raises it |
-//! | [`Grid`](super::Grid) | replace each primitive (below), or rebuild | `Grid::insert`, `remove`, `replace`: only the cells the primitive covered and now covers are edited, each list in place, so the cost is proportional to those cells and their lists (amortised: a list that outgrows its room moves to the end of the list array, and the array is compacted when half of it is dead) | the grid's box and cells are fixed at build time: a primitive that leaves the box is kept in the unplaced list, which every query tests, so a grid whose primitives wander out should be rebuilt |
+//! | [`Grid`](super::Grid) | replace each primitive (below), or rebuild | [`Grid::insert`](super::Grid::insert), [`remove`](super::Grid::remove), [`replace`](super::Grid::replace): only the cells the primitive covered and now covers are edited, each list in place, so the cost is proportional to those cells and their lists (amortised: a list that outgrows its room moves to the end of the list array, and the array is compacted when half of it is dead) | the grid's box and cells are fixed at build time: a primitive that leaves the box is kept in the unplaced list, which every query tests, so a grid whose primitives wander out should be rebuilt |
 //! | [`KdTree`](super::KdTree), [`BspTree`](super::BspTree), [`Orthtree`](super::Orthtree) (quadtree, octree) | rebuild: O(n log n) | rebuild | every build is fresh |
 //!
 //! Why the AABB tree's splice is O(n): the tree keeps the layout the queries walk, nodes
@@ -38,7 +38,8 @@
 
 use std::fmt;
 
-/// What [`remove`](super::Bvh::remove) took out, and which primitive took its index.
+/// What a `remove` ([`Bvh::remove`](super::Bvh::remove), [`Grid::remove`](super::Grid::remove))
+/// took out, and which primitive took its index.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Removed<P> {
     /// The primitive removed.
