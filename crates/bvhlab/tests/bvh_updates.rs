@@ -22,6 +22,7 @@ type Tree<P> = Bvh<Aabb<<P as Primitive>::Point>, P>;
 /// A tree beside the `Vec` it must mirror, and the queries that check it.
 struct Mirror<P: TestPrim> {
     name: String,
+    max_depth: usize,
     tree: Tree<P>,
     prims: Vec<P>,
     steps: usize,
@@ -32,6 +33,7 @@ impl<P: TestPrim> Mirror<P> {
     fn new(name: &str, prims: Vec<P>, options: &BvhOptions) -> Self {
         Self {
             name: format!("{name}, {options:?}"),
+            max_depth: options.max_depth,
             tree: Tree::<P>::with_options(&prims, options),
             prims,
             steps: 0,
@@ -75,6 +77,8 @@ impl<P: TestPrim> Mirror<P> {
             format!("{:?}", self.prims),
             "{name}: the primitives"
         );
+        let depth = self.tree.stats().max_depth;
+        assert!(depth <= self.max_depth, "{name}: depth {depth}");
         let finite = self.prims.iter().filter(|p| is_finite(*p)).count();
         assert_eq!(self.tree.skipped(), self.prims.len() - finite, "{name}");
         let budget = if thorough {

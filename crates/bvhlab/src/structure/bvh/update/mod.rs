@@ -20,6 +20,8 @@
 mod optimize;
 mod search;
 mod splice;
+#[cfg(test)]
+mod tests;
 
 pub use optimize::OptimizeReport;
 
@@ -173,20 +175,21 @@ where
             leaf_size: self.options.leaf_size(),
             full_leaves: false,
         };
-        match self.cheapest_place(item, &limits)? {
-            (Place::IntoLeaf(leaf), _) => return Some(Place::IntoLeaf(leaf)),
-            (Place::Sibling(node), depth) => {
-                if depth + 1 + self.height_of(node).max(item.height) <= limits.depth {
-                    return Some(Place::Sibling(node));
+        let found = self.cheapest_place(item, &limits)?;
+        match found.place {
+            Place::IntoLeaf(_) => return Some(found.place),
+            Place::Sibling(node) => {
+                if found.depth + 1 + self.height_of(node).max(item.height) <= limits.depth {
+                    return Some(found.place);
                 }
             }
         }
         let heights = self.heights();
         limits.heights = Some(&heights);
-        if let Some((place, _)) = self.cheapest_place(item, &limits) {
-            return Some(place);
+        if let Some(found) = self.cheapest_place(item, &limits) {
+            return Some(found.place);
         }
         limits.full_leaves = item.prims.is_some();
-        self.cheapest_place(item, &limits).map(|(place, _)| place)
+        self.cheapest_place(item, &limits).map(|found| found.place)
     }
 }

@@ -71,6 +71,15 @@ pub(super) enum Place {
     IntoLeaf(usize),
 }
 
+/// What the search found: the place, the depth of its node, and how many nodes the search
+/// looked at (its cost, which the tests compare with the tree's size).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Found {
+    pub(super) place: Place,
+    pub(super) depth: usize,
+    pub(super) visited: usize,
+}
+
 /// A node waiting in the queue, with the cost its ancestors would add and the least any
 /// place below it can cost.
 struct Waiting {
@@ -115,13 +124,9 @@ where
     V: Vector,
     P: Primitive<Point = V>,
 {
-    /// The cheapest place for `item` within `limits`, and the depth of the node found; `None`
-    /// only when `limits` allow no place. The tree must not be empty.
-    pub(super) fn cheapest_place(
-        &self,
-        item: &Item<V>,
-        limits: &Limits<'_>,
-    ) -> Option<(Place, usize)> {
+    /// The cheapest place for `item` within `limits`; `None` only when `limits` allow no
+    /// place. The tree must not be empty.
+    pub(super) fn cheapest_place(&self, item: &Item<V>, limits: &Limits<'_>) -> Option<Found> {
         let x = area(&item.volume);
         // What the item itself adds when it gets a place of its own (a leaf: its cost;
         // a subtree keeps its cost wherever it goes, so nothing to compare).
@@ -136,10 +141,12 @@ where
             node: 0,
             depth: 0,
         }]);
+        let mut visited = 0;
         while let Some(w) = queue.pop() {
             if best.as_ref().is_some_and(|&(b, _, _)| w.bound >= b) {
                 break;
             }
+            visited += 1;
             let node = &self.nodes[w.node];
             let here = area(&node.volume);
             let joined = area(&node.volume.merge(&item.volume));
@@ -174,7 +181,11 @@ where
                 }
             }
         }
-        best.map(|(_, place, depth)| (place, depth))
+        best.map(|(_, place, depth)| Found {
+            place,
+            depth,
+            visited,
+        })
     }
 
     /// Every node's height (0 for a leaf): children come after their parent, so a backward
