@@ -77,6 +77,10 @@ pub(super) enum Place {
 pub(super) struct Found {
     pub(super) place: Place,
     pub(super) depth: usize,
+    #[cfg_attr(
+        not(test),
+        expect(dead_code, reason = "only the unit tests read the search's cost")
+    )]
     pub(super) visited: usize,
 }
 
