@@ -289,7 +289,7 @@ fn inserting_one_by_one_makes_a_tree_close_to_a_build() {
         &BvhOptions::with_method(SplitMethod::SpatialMedian),
     );
     assert!(
-        inserted < 1.5 * built,
+        inserted < 1.2 * built,
         "inserted one by one: {inserted}, built: {built}, median {:?}",
         median.sah_cost()
     );
@@ -297,8 +297,10 @@ fn inserting_one_by_one_makes_a_tree_close_to_a_build() {
 }
 
 #[test]
-fn sorted_inserts_keep_the_tree_within_its_depth_limit() {
-    // Points along a line, in order: greedy insertion alone would make a long chain.
+fn sorted_inserts_keep_the_tree_within_its_depth_limit_and_close_to_a_build() {
+    // Points along a line, in order: greedy insertion alone makes a long chain (each point
+    // lands beside the root: depth 64, the limit, and 7.6 times the SAH cost of a build);
+    // the rotations on the way up keep it as good as a build.
     for options in [
         BvhOptions::default(),
         BvhOptions {
@@ -319,6 +321,16 @@ fn sorted_inserts_keep_the_tree_within_its_depth_limit() {
             "{options:?}: depth {}",
             stats.max_depth
         );
+        // Within a depth of 6 the leaves must take what no new leaf can, and the last
+        // leaves grow large: that is within the limit, not close to a build.
+        if options == BvhOptions::default() {
+            let built = Tree::<Vec2>::with_options(&prims, &options);
+            let (cost, built_cost) = (tree.sah_cost(), built.sah_cost());
+            assert!(
+                cost.expect("a cost") < 1.2 * built_cost.expect("a cost"),
+                "inserted {cost:?}, built {built_cost:?}"
+            );
+        }
         let mut rng = rng(600);
         check_tree("a line", &tree, &prims, &[], &mut rng, Budget::default());
     }
@@ -424,4 +436,53 @@ fn reinsertion_of_a_tiny_or_flat_tree_changes_nothing() {
     let report = tree.optimize_by_reinsertion(3);
     assert!(report.sah_after <= report.sah_before, "{report:?}");
     tree.validate().expect("valid");
+}
+
+#[test]
+fn degenerate_scenes_stay_exact_when_inserted_one_by_one() {
+    let mut rng = rng(900);
+    let random: Vec<Triangle3> = (0..300)
+        .map(|_| Triangle3::random(&mut rng, 10.0))
+        .collect();
+    let same = Triangle3::new(Vec3::ZERO, Vec3::X, Vec3::Y);
+    let scenes: Vec<(&str, Vec<Triangle3>)> = vec![
+        // Every box the same: every place costs the same.
+        ("identical", vec![same; 300]),
+        // Areas overflow f32 to infinity (and their differences to NaN).
+        ("huge", random.iter().map(|t| t.map(|v| v * 1e19)).collect()),
+        (
+            "tiny",
+            random.iter().map(|t| t.map(|v| v * 1e-12)).collect(),
+        ),
+        (
+            "flat",
+            random
+                .iter()
+                .map(|t| t.map(|v| Vec3::new(v.x, v.y, 0.5)))
+                .collect(),
+        ),
+    ];
+    for (name, prims) in scenes {
+        let mut tree = Tree::<Triangle3>::build(&[]);
+        for (i, p) in prims.iter().enumerate() {
+            tree.insert(*p);
+            if i % 60 == 0 {
+                tree.validate()
+                    .unwrap_or_else(|e| panic!("{name}, {i}: {e}"));
+            }
+        }
+        tree.validate().unwrap_or_else(|e| panic!("{name}: {e}"));
+        check_tree(name, &tree, &prims, &[], &mut rng, Budget::default());
+        // Half of them out again, and a reinsertion pass.
+        let mut left = prims.clone();
+        for _ in 0..prims.len() / 2 {
+            let i = rng.random_range(0..left.len());
+            tree.remove(i).expect("in range");
+            left.swap_remove(i);
+        }
+        let report = tree.optimize_by_reinsertion(3);
+        assert!(report.sah_after <= report.sah_before, "{name}: {report:?}");
+        tree.validate().unwrap_or_else(|e| panic!("{name}: {e}"));
+        check_tree(name, &tree, &left, &[], &mut rng, Budget::default());
+    }
 }

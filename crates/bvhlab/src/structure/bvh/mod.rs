@@ -96,7 +96,8 @@
 //! - `update/`: an AABB tree's [`Bvh::insert`], [`Bvh::remove`] and [`Bvh::replace`]
 //!   without a rebuild (`mod.rs`), the branch-and-bound search for the cheapest place
 //!   (`search.rs`, Bittner, Hapala and Havran 2013), the edits of the depth-first arrays
-//!   (`splice.rs`) and [`Bvh::optimize_by_reinsertion`] (`optimize.rs`). What each update
+//!   (`splice.rs`), the tree rotations after an insert (`rotate.rs`, Catto 2019) and
+//!   [`Bvh::optimize_by_reinsertion`] (`optimize.rs`). What each update
 //!   costs beside the other structures' is in [`update`](super::update).
 //! - `validate.rs` (the invariants) and `tests.rs` (unit tests that need private fields).
 //!
@@ -121,7 +122,7 @@
 //! | [`validate`](SpatialIndex::validate) | `validate.rs` |
 //! | [`Bvh::refit`], [`Bvh::needs_rebuild`] | `refit.rs` |
 //! | [`Bvh4::refit`], [`Bvh4::needs_rebuild`], [`Bvh4::validate`] | `wide/refit.rs`, `wide/validate.rs` |
-//! | [`Bvh::insert`], [`Bvh::remove`], [`Bvh::replace`] (AABB trees) | `update/mod.rs`, placing with `update/search.rs` and editing with `update/splice.rs` |
+//! | [`Bvh::insert`], [`Bvh::remove`], [`Bvh::replace`] (AABB trees) | `update/mod.rs`, placing with `update/search.rs`, editing with `update/splice.rs`, rotating with `update/rotate.rs` |
 //! | [`Bvh::optimize_by_reinsertion`] (AABB trees) | `update/optimize.rs` |
 //! | [`Bvh::build`], [`Bvh::with_options`]: an AABB tree with [`SplitMethod::BinnedSah`] | `build/fast.rs`, in one go |
 //! | [`Bvh::build`], [`Bvh::with_options`]: any other tree; [`Bvh::build_observed`] | `build/mod.rs` and `node_stages.rs`, the resumable builder run to the end |

@@ -6,6 +6,8 @@
 //! - `search.rs`: where a primitive goes, the branch-and-bound search for the place that
 //!   raises the SAH cost least (Bittner, Hapala and Havran 2013).
 //! - `splice.rs`: the edits of the depth-first arrays that put it there or take it out.
+//! - `rotate.rs`: the tree rotations on the way back up after an insert (Catto 2019), which
+//!   keep sorted input from growing a chain.
 //! - `optimize.rs`: [`Bvh::optimize_by_reinsertion`], Bittner et al.'s in-place improvement.
 //!
 //! Only AABB trees: a box node is the union of its children's boxes, so a change refits its
@@ -18,6 +20,7 @@
 //! [`update`](crate::structure::update#what-an-update-costs-structure-by-structure).
 
 mod optimize;
+mod rotate;
 mod search;
 mod splice;
 #[cfg(test)]
@@ -46,7 +49,9 @@ where
     /// search, `update/search.rs`): into a leaf that holds fewer than
     /// [`max_leaf_size`](super::BvhOptions::max_leaf_size) primitives, or into a leaf of its
     /// own beside any node, under a new parent. A full leaf is never grown; the search puts
-    /// the primitive beside it instead, which splits it into a new inner node. The tree
+    /// the primitive beside it instead, which splits it into a new inner node. Then, on the
+    /// way back up, each ancestor may swap a child with a grandchild when that shrinks the
+    /// node between them (a tree rotation, `update/rotate.rs`). The tree
     /// stays within [`max_depth`](super::BvhOptions::max_depth): only when no new leaf fits
     /// there does a leaf grow past `max_leaf_size`, as the builds make leaves of any size at
     /// that depth. The volumes above the change are fitted again, so
@@ -139,11 +144,21 @@ where
             prims: Some(1),
             height: 0,
         };
-        match self.place(&item) {
-            Some(Place::IntoLeaf(node)) => self.grow_leaf(node, prim, id as u32),
-            Some(Place::Sibling(node)) => self.attach(leaf, node),
+        // Then rotations on the way up, from the node that changed.
+        let path = match self.place(&item) {
+            Some(Place::IntoLeaf(node)) => {
+                self.grow_leaf(node, prim, id as u32);
+                self.path_to(node)
+            }
+            Some(Place::Sibling(node)) => {
+                self.attach(leaf, node);
+                let mut path = self.path_to(node);
+                path.push(node); // the new parent
+                path
+            }
             None => unreachable!("a leaf may always grow past its size"),
-        }
+        };
+        self.rotate_path(&path);
     }
 
     /// Takes primitive `id` out of the tree, if it is in it; `prims` is left alone.
