@@ -36,11 +36,13 @@
 //! walk here reads.
 //!
 //! What that means in time (`cargo bench -p bvhlab --bench updates`: 10 000 triangles of
-//! the Stanford bunny, medians on the two-core machine this was written on): a binned SAH
-//! build took 13 ms, one remove and insert about 0.2 ms (the memory moves dominate), and
-//! inserting all 10 000 one by one 0.64 s, fifty builds; the grid's build took 3.8 ms and
-//! moving one triangle about 1 µs. So: a few primitives move by updates, all of them by a
-//! refit, and after many updates a rebuild pays.
+//! the Stanford bunny, medians of one run on a shared two-core machine, where builds
+//! varied from 5 to 13 ms between runs): a binned SAH build took 5.1 ms, moving one
+//! triangle by [`replace`](super::Bvh::replace) about 0.2 ms (the memory moves dominate:
+//! a twentieth of a build), and inserting all 10 000 one by one 0.52 s, a hundred builds;
+//! the grid's build took about 4 ms and moving one triangle about 1 µs. So: a few
+//! primitives move by updates, all of them by a refit, and after many updates a rebuild
+//! pays.
 
 use std::fmt;
 

@@ -37,16 +37,31 @@ where
 {
     /// Tries a rotation at each of `path` (root first, each the parent of the next),
     /// deepest first, keeping the tree within its depth limit.
+    ///
+    /// A rotation moves one subtree a level down, so it can deepen the tree by one. While
+    /// the tree's height (measured once, when a rotation is first in view, then counted up
+    /// by one per rotation) stays below the limit, every rotation is safe; only at the limit
+    /// is the subtree's own height measured.
     pub(super) fn rotate_path(&mut self, path: &[usize]) {
+        let mut height = None;
         for (depth, &node) in path.iter().enumerate().rev() {
-            if let Some(rotation) = self.best_rotation(node, depth) {
-                self.rotate(node, &rotation);
-            }
+            let Some(rotation) = self.best_rotation(node, depth, &mut height) else {
+                continue;
+            };
+            self.rotate(node, &rotation);
+            height = height.map(|h| h + 1);
         }
     }
 
-    /// The swap at `node` (at `depth`) that lowers the area most, if one does.
-    fn best_rotation(&self, node: usize, depth: usize) -> Option<Rotation> {
+    /// The swap at `node` (at `depth`) that lowers the area most, if one does and it keeps
+    /// the tree within its depth limit; `height` is a bound on the tree's height, measured
+    /// when first needed.
+    fn best_rotation(
+        &self,
+        node: usize,
+        depth: usize,
+        height: &mut Option<usize>,
+    ) -> Option<Rotation> {
         let area = |i: usize| self.nodes[i].volume.boundary_measure();
         let union = |i: usize, j: usize| {
             self.nodes[i]
@@ -64,19 +79,21 @@ where
             for (high, stay) in [(f, g), (g, f)] {
                 let gain = area(other) - union(low, stay);
                 if gain > 0.0 && best.as_ref().is_none_or(|r| gain > r.gain) {
-                    // `low` goes one level down.
-                    if depth + 2 + self.height_of(low) <= self.options.depth_limit() {
-                        best = Some(Rotation {
-                            low,
-                            high,
-                            stay,
-                            gain,
-                        });
-                    }
+                    best = Some(Rotation {
+                        low,
+                        high,
+                        stay,
+                        gain,
+                    });
                 }
             }
         }
-        best
+        let best = best?;
+        let limit = self.options.depth_limit();
+        let tree_height = *height.get_or_insert_with(|| self.heights()[0]);
+        // `low` goes one level down: its deepest node ends at `depth + 2 + height(low)`,
+        // which is at most one more than the tree's height.
+        (tree_height < limit || depth + 2 + self.height_of(best.low) <= limit).then_some(best)
     }
 
     /// Makes `node` the parent of `high` and of a new inner node over `low` and `stay`,
