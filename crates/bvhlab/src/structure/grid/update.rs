@@ -2,9 +2,9 @@
 //! only the cells a primitive covered and now covers are edited.
 //!
 //! The grid's box and cells are fixed at build time, so a primitive's cells depend on it
-//! alone (`cells_of` in `layout.rs`, the build's own rule): an update takes the primitive out of
-//! the cells it left and lists it in those it reached, each list edited in place and kept
-//! ascending. Every cell list has room to grow (`start`, `len`, `room`); a list that
+//! alone (`cells_of` in `layout.rs`, the build's own rule): an update takes the primitive
+//! out of the cells it left and lists it in those it reached, each list edited in place and
+//! kept ascending. Every cell list has room to grow (`start`, `len`, `room`); a list that
 //! outgrows its room moves to the end of the list array with twice the room (a dynamic
 //! array's doubling), and when the spare entries (room left, rooms left behind) outnumber
 //! the listed entries and the cells together, all lists are packed again as a build packs
@@ -41,8 +41,8 @@ impl<P: Primitive> Grid<P> {
     /// assert_eq!(grid.unplaced(), &[2]);
     /// grid.validate()?;
     /// let ray = Ray2::new(Vec2::new(-1.0, 1.0), Vec2::X)?;
-    /// let hits: Vec<usize> = grid.ray_all_hits(&ray, f32::INFINITY).iter().map(|h| h.prim).collect();
-    /// assert_eq!(hits, [0, 1, 2]);
+    /// let hits = grid.ray_all_hits(&ray, f32::INFINITY);
+    /// assert_eq!(hits.iter().map(|h| h.prim).collect::<Vec<_>>(), [0, 1, 2]);
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn insert(&mut self, prim: P) -> usize {
