@@ -181,12 +181,22 @@ where
         let parent = path.pop().expect("the root is never detached");
         let end = subtree_end(&self.nodes, node);
         let slots = self.slot_span(node);
+        // One move of the nodes after the cut: as the first child, the parent and the cut
+        // run are next to each other; as the second, the sibling's run between them is
+        // copied down over the parent.
+        let nodes = if node == parent + 1 {
+            self.nodes.drain(parent..end).skip(1).collect()
+        } else {
+            let cut = self.nodes[node..end].to_vec();
+            let sibling = self.nodes[parent + 1..node].to_vec();
+            self.nodes.splice(parent..end, sibling);
+            cut
+        };
         let mut cut = Subtree {
-            nodes: self.nodes.drain(node..end).collect(),
+            nodes,
             prims: self.leaf_prims.drain(slots.clone()).collect(),
             ids: self.leaf_ids.drain(slots.clone()).collect(),
         };
-        self.nodes.remove(parent);
         rebase(&mut cut.nodes, node, slots.start);
         // Links into the parent now reach the sibling, which took its index; past it one
         // node fewer, past the cut run the whole run fewer.
@@ -248,8 +258,13 @@ where
             start: end32 + 1,
             count: 0,
         };
-        self.nodes.splice(end..end, sub.nodes);
-        self.nodes.insert(node, parent);
+        // One move of the nodes after `node`'s subtree: its run is copied one place down,
+        // behind the new parent, and the spliced run follows it.
+        let rewritten: Vec<_> = std::iter::once(parent)
+            .chain(self.nodes[node..end].iter().copied())
+            .chain(sub.nodes)
+            .collect();
+        self.nodes.splice(node..end, rewritten);
         self.leaf_prims.splice(slot..slot, sub.prims);
         self.leaf_ids.splice(slot..slot, sub.ids);
         self.refit_path(&path);
