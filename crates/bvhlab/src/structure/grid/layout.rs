@@ -14,7 +14,8 @@ pub struct GridOptions {
     /// Cells per axis, overriding the automatic choice (entries beyond the dimension are
     /// ignored; 0 counts as 1). Axes along which the scene is flat always get one cell.
     pub resolution: Option<[u32; 3]>,
-    /// The most cells the grid may have (a memory cap: each cell costs a 4-byte offset).
+    /// The most cells the grid may have (a memory cap: each cell costs 12 bytes, where its
+    /// list lies and how much room it has).
     /// The resolution is scaled down uniformly to fit.
     pub max_cells: usize,
 }
