@@ -128,8 +128,14 @@ fn random_sequence<P: TestPrim>(name: &str, options: &BvhOptions, seed: u64, ste
             }
             7 if n > 0 => {
                 let i = rng.random_range(0..n);
-                let shift = random_vector::<P::Point>(&mut rng, 0.3 * extent);
-                let moved = m.prims[i].map(|v| v + shift);
+                // Mostly a move; sometimes another primitive, now and then a NaN one (or a
+                // NaN one made finite).
+                let moved = if rng.random_bool(0.7) {
+                    let shift = random_vector::<P::Point>(&mut rng, 0.3 * extent);
+                    m.prims[i].map(|v| v + shift)
+                } else {
+                    random_prim(&mut rng, extent)
+                };
                 m.replace(i, moved);
                 "replace (a move)"
             }
@@ -485,4 +491,25 @@ fn degenerate_scenes_stay_exact_when_inserted_one_by_one() {
         tree.validate().unwrap_or_else(|e| panic!("{name}: {e}"));
         check_tree(name, &tree, &left, &[], &mut rng, Budget::default());
     }
+}
+
+#[test]
+fn a_primitive_replaced_by_a_nan_one_leaves_the_tree_and_comes_back() {
+    let mut rng = rng(1000);
+    let prims: Vec<Triangle3> = (0..50).map(|_| Triangle3::random(&mut rng, 10.0)).collect();
+    let mut m = Mirror::new("nan", prims.clone(), &BvhOptions::default());
+    for i in [3, 17, 42] {
+        m.replace(i, prims[i].map(|v| v * f32::NAN));
+        m.check(&mut rng, "made NaN", true);
+    }
+    assert_eq!(m.tree.skipped(), 3);
+    m.remove(17);
+    m.check(&mut rng, "a NaN one removed", true);
+    for i in [3, 42] {
+        let moved = prims[i].map(|v| v + Vec3::ONE);
+        m.replace(i, moved);
+        m.check(&mut rng, "made finite again", true);
+    }
+    assert_eq!(m.tree.skipped(), 0);
+    assert!(m.rays_hit > 0, "no ray hit anything");
 }
