@@ -24,7 +24,8 @@
 //! with axis-aligned planes); the grid and the quadtree share their rounding tolerances and
 //! per-query bookkeeping (`grid/tolerance.rs`, `grid/probe.rs`). Beside the structures:
 //! [`observe`] (the events), [`query`] (answers and their cost), [`outline`] (what the lab
-//! draws), [`stats`], [`mailbox`].
+//! draws), [`stats`], [`mailbox`], and [`update`]: what inserting, removing and moving a
+//! primitive does to indices, and what it costs in each structure.
 
 pub mod brute_force;
 pub mod bsp;
@@ -39,6 +40,7 @@ pub mod plane_tree;
 pub mod quadtree;
 pub mod query;
 pub mod stats;
+pub mod update;
 
 pub use brute_force::BruteForce;
 pub use bsp::{BspOptions, BspTree};
@@ -51,6 +53,7 @@ pub use outline::{NodeOutline, NodeShape, Outline, SplitPlane};
 pub use quadtree::{Orthtree, OrthtreeOptions};
 pub use query::{Hit, HitTracker, Nearest, NearestSet, QueryCost, RangeShape, Traced};
 pub use stats::{Stats, ValidationError};
+pub use update::{Removed, UpdateError};
 
 use crate::error::{GeometryError, check_finite};
 use crate::{Primitive, Ray};

@@ -93,6 +93,12 @@
 //!   first-hit and closest-point walks (`ray.rs`, `nearest.rs`) and stack (`stack.rs`).
 //! - `refit.rs`: [`Bvh::refit`] after the primitives moved (Wald, Boulos and Shirley 2007),
 //!   its [`RefitReport`] and [`Bvh::needs_rebuild`]; [`Bvh4::refit`] is in `wide/refit.rs`.
+//! - `update/`: an AABB tree's [`Bvh::insert`], [`Bvh::remove`] and [`Bvh::replace`]
+//!   without a rebuild (`mod.rs`), the branch-and-bound search for the cheapest place
+//!   (`search.rs`, Bittner, Hapala and Havran 2013), the edits of the depth-first arrays
+//!   (`splice.rs`), the tree rotations after an insert (`rotate.rs`, Catto 2019) and
+//!   [`Bvh::optimize_by_reinsertion`] (`optimize.rs`). What each update
+//!   costs beside the other structures' is in [`update`](super::update).
 //! - `validate.rs` (the invariants) and `tests.rs` (unit tests that need private fields).
 //!
 //! ## Which walk each call runs
@@ -116,6 +122,8 @@
 //! | [`validate`](SpatialIndex::validate) | `validate.rs` |
 //! | [`Bvh::refit`], [`Bvh::needs_rebuild`] | `refit.rs` |
 //! | [`Bvh4::refit`], [`Bvh4::needs_rebuild`], [`Bvh4::validate`] | `wide/refit.rs`, `wide/validate.rs` |
+//! | [`Bvh::insert`], [`Bvh::remove`], [`Bvh::replace`] (AABB trees) | `update/mod.rs`, placing with `update/search.rs`, editing with `update/splice.rs`, rotating with `update/rotate.rs` |
+//! | [`Bvh::optimize_by_reinsertion`] (AABB trees) | `update/optimize.rs` |
 //! | [`Bvh::build`], [`Bvh::with_options`]: an AABB tree with [`SplitMethod::BinnedSah`] | `build/fast.rs`, in one go |
 //! | [`Bvh::build`], [`Bvh::with_options`]: any other tree; [`Bvh::build_observed`] | `build/mod.rs` and `node_stages.rs`, the resumable builder run to the end |
 //! | [`BvhBuild::step`], [`BvhBuild::finish`] | the same builder, a budget at a time (`build/job.rs`) |
@@ -141,6 +149,7 @@
 mod build;
 pub mod layout;
 mod refit;
+mod update;
 mod validate;
 pub mod volume;
 mod walk;
@@ -154,6 +163,7 @@ pub use build::options::{BvhOptions, MAX_DEPTH, SphereFit, SplitMethod};
 pub use build::split_log::SplitRecord;
 pub use layout::{Bvh, BvhNode};
 pub use refit::{RefitError, RefitReport};
+pub use update::OptimizeReport;
 pub use volume::{NodeVolume, PreparedRange, PreparedRay, SLACK, TINY};
 pub use wide::{Bvh4, Bvh4Node, WIDTH};
 

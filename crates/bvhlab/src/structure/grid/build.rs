@@ -1,7 +1,7 @@
 //! Building a grid: choose the resolution, list each primitive in every cell it touches, and
-//! pack the lists into compressed sparse rows.
+//! pack the lists into one array in cell order.
 
-use super::layout::{Grid, GridOptions};
+use super::layout::{CellList, Grid, GridOptions};
 use super::probe::{is_placeable, placeable_bounds, prim_id};
 use super::resolution::{choose_resolution, planes};
 use crate::structure::{Event, NodeId, Observer};
@@ -47,8 +47,9 @@ impl<P: Primitive> Grid<P> {
                     Vec::new()
                 }
             }),
-            cell_start: vec![0],
+            cell_lists: Vec::new(),
             cell_prims: Vec::new(),
+            spare: 0,
             unplaced,
             options,
         };
@@ -81,11 +82,18 @@ impl<P: Primitive> Grid<P> {
             lists[next[c as usize] as usize] = i;
             next[c as usize] += 1;
         }
-        grid.cell_start = start;
+        grid.cell_lists = start
+            .windows(2)
+            .map(|w| CellList {
+                start: w[0],
+                len: w[1] - w[0],
+                room: w[1] - w[0],
+            })
+            .collect();
         grid.cell_prims = lists;
 
         for c in 0..cell_count {
-            let count = grid.cell_start[c + 1] - grid.cell_start[c];
+            let count = grid.cell_lists[c].len;
             if count > 0 {
                 observer.on(Event::BuildLeaf {
                     node: NodeId(c as u32),

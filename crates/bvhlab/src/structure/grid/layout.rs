@@ -1,8 +1,8 @@
-//! The grid's memory layout: its box, the cell planes per axis, and the cell lists in
-//! compressed sparse row form (one offset per cell into one index array).
+//! The grid's memory layout: its box, the cell planes per axis, and the cell lists in one
+//! index array (each cell's start, length and room, so that updates edit a list in place).
 
 use crate::volume::Aabb;
-use crate::{Primitive, Vector};
+use crate::{BoundingVolume, Primitive, Vector};
 
 /// Options of a grid build. [`GridOptions::default`] picks the resolution from the primitive
 /// count with `density = 3` and at most 2^22 cells.
@@ -14,7 +14,8 @@ pub struct GridOptions {
     /// Cells per axis, overriding the automatic choice (entries beyond the dimension are
     /// ignored; 0 counts as 1). Axes along which the scene is flat always get one cell.
     pub resolution: Option<[u32; 3]>,
-    /// The most cells the grid may have (a memory cap: each cell costs a 4-byte offset).
+    /// The most cells the grid may have (a memory cap: each cell costs 12 bytes, where its
+    /// list lies and how much room it has).
     /// The resolution is scaled down uniformly to fit.
     pub max_cells: usize,
 }
@@ -49,13 +50,36 @@ pub struct Grid<P: Primitive> {
     /// `[planes[i][k], planes[i][k + 1]]`. Build and queries read the same values, so a
     /// primitive listed in a cell touches exactly the box the queries see.
     pub(super) planes: [Vec<f32>; 3],
-    /// `cell_start[c]..cell_start[c + 1]` is cell `c`'s slice of `cell_prims`.
-    pub(super) cell_start: Vec<u32>,
-    /// The cell lists, each ascending by primitive index.
+    /// Where each cell's list lies in `cell_prims`, in linear cell order.
+    pub(super) cell_lists: Vec<CellList>,
+    /// The cell lists, each ascending by primitive index, with the room updates left
+    /// (`update.rs`); a build packs them in cell order, with no room to spare.
     pub(super) cell_prims: Vec<u32>,
-    /// Primitives with a NaN or infinite coordinate: in no cell, tested by every query.
+    /// Entries of `cell_prims` that hold no list entry: the room left in lists, and whole
+    /// rooms left behind by lists that moved (`update.rs`, which packs the lists again when
+    /// these outnumber the entries and cells).
+    pub(super) spare: usize,
+    /// Primitives in no cell, ascending, tested by every query: those with a NaN or
+    /// infinite coordinate, and (after an update) those that stick out of the grid's box.
     pub(super) unplaced: Vec<u32>,
     pub(super) options: GridOptions,
+}
+
+/// Where one cell's list lies: `cell_prims[start..start + len]`, with room for updates up
+/// to `start + room` (12 bytes a cell: the price of updates that touch only their cells,
+/// where compressed sparse rows would move every list after the change).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(super) struct CellList {
+    pub(super) start: u32,
+    pub(super) len: u32,
+    pub(super) room: u32,
+}
+
+impl CellList {
+    /// The entries of `cell_prims` it holds.
+    pub(super) fn range(self) -> std::ops::Range<usize> {
+        self.start as usize..(self.start + self.len) as usize
+    }
 }
 
 /// Integer cell coordinates; unused axes are 0.
@@ -110,13 +134,30 @@ impl<P: Primitive> Grid<P> {
 
     /// The primitives a cell lists, ascending.
     pub fn cell_primitives(&self, index: usize) -> &[u32] {
-        let (start, end) = (self.cell_start[index], self.cell_start[index + 1]);
-        &self.cell_prims[start as usize..end as usize]
+        &self.cell_prims[self.cell_lists[index].range()]
     }
 
-    /// The primitives that could not be placed (a NaN or infinite coordinate).
+    /// The primitives in no cell, ascending, which every query tests: those with a NaN or
+    /// infinite coordinate, and those that an update moved (or inserted) outside the
+    /// grid's box, which is fixed at build time.
     pub fn unplaced(&self) -> &[u32] {
         &self.unplaced
+    }
+
+    /// Whether a primitive goes into cells: every coordinate finite and its box inside the
+    /// grid's box. At build time every finite primitive does (the box is theirs); after
+    /// updates, one outside goes to [`unplaced`](Self::unplaced).
+    pub(super) fn fits(&self, prim: &P) -> bool {
+        let b = prim.bounds();
+        self.cell_count() > 0
+            && prim.vertices().all(Vector::is_finite)
+            && self.bounds.contains(b.min)
+            && self.bounds.contains(b.max)
+    }
+
+    /// Cell list entries in all (a primitive counts once per cell that lists it).
+    pub(super) fn listed(&self) -> usize {
+        self.cell_lists.iter().map(|l| l.len as usize).sum()
     }
 
     /// Boundary `k` along `axis`, widened to `f64`.
@@ -191,11 +232,12 @@ impl<P: Primitive> Grid<P> {
         }
     }
 
-    /// Heap bytes: the primitives, the planes, the offsets and the lists.
+    /// Heap bytes: the primitives, the planes, the list places and the lists.
     pub(super) fn memory_bytes(&self) -> usize {
         self.prims.len() * size_of::<P>()
             + self.planes.iter().map(Vec::len).sum::<usize>() * 4
-            + (self.cell_start.len() + self.cell_prims.len() + self.unplaced.len()) * 4
+            + self.cell_lists.len() * size_of::<CellList>()
+            + (self.cell_prims.len() + self.unplaced.len()) * 4
     }
 }
 

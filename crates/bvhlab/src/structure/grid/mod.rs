@@ -1,6 +1,6 @@
 //! The uniform grid (lecture §3, "Uniform spatial subdivision"), in 2D and 3D.
 //!
-//! - [`layout`]: the [`Grid`] and its [`GridOptions`]; cells in compressed sparse rows.
+//! - [`layout`]: the [`Grid`] and its [`GridOptions`]; the cell lists in one array.
 //! - [`resolution`]: how many cells (Cleary and Wyvill's rule), and where their boundaries lie.
 //! - [`build`]: each primitive listed in exactly the cells it touches.
 //! - [`ray`]: first hit, any hit, all hits, with mailboxing, over the cells that [`dda`]
@@ -9,6 +9,9 @@
 //! - [`nearest`]: k nearest, searching outward from the query point's cell.
 //! - [`range`]: the primitives in a range.
 //! - [`collide`]: grid-against-grid collision.
+//! - [`update`]: [`Grid::insert`], [`Grid::remove`] and [`Grid::replace`], which edit only
+//!   the cells a primitive covered and now covers; the box and cells stay as built, and a
+//!   primitive outside the box is kept in the unplaced list that every query tests.
 //! - [`validate`]: invariants and statistics.
 //! - `tolerance` and `probe` (crate-private): the rounding tolerances and the per-query
 //!   bookkeeping that the grid and the quadtree/octree ([`super::quadtree`]) share.
@@ -46,6 +49,7 @@ pub mod range;
 pub mod ray;
 pub mod resolution;
 pub(crate) mod tolerance;
+pub mod update;
 pub mod validate;
 
 #[cfg(test)]

@@ -5,7 +5,7 @@ use std::cmp::Ordering;
 use super::layout::Grid;
 use super::probe::is_placeable;
 use crate::structure::{Stats, ValidationError};
-use crate::{BoundingVolume, Primitive, Vector};
+use crate::{Primitive, Vector};
 
 /// Up to this many (cell, primitive) pairs, validation tests every primitive against every
 /// cell, independently of the build's candidate ranges.
@@ -28,28 +28,40 @@ impl<P: Primitive> Grid<P> {
             max_depth: 0,
             leaf_sizes: Stats::leaf_size_histogram(sizes),
             primitives: self.prims.len(),
-            references: self.cell_prims.len() + self.unplaced.len(),
+            references: self.listed() + self.unplaced.len(),
             memory_bytes: self.memory_bytes(),
             sah_cost: None,
         }
     }
 
-    /// Checks the layout (planes, offsets, sorted lists), that the unplaced primitives are
-    /// exactly those with a non-finite coordinate, and that every primitive is listed in
-    /// exactly the cells it shares a point with: against every cell on moderate inputs, else
-    /// against the cells its box touches.
+    /// Checks the layout (planes, cell lists apart from each other, sorted lists), that the
+    /// unplaced primitives are exactly those that do not fit in the grid's box (a NaN or
+    /// infinite coordinate, or moved out by an update), and that every primitive is listed
+    /// in exactly the cells it shares a point with: against every cell on moderate inputs,
+    /// else against the cells its box touches.
     pub(super) fn check(&self) -> Result<(), ValidationError> {
         self.check_layout()?;
+        if self.unplaced.windows(2).any(|w| w[0] >= w[1]) {
+            return fail("the unplaced list is not ascending".into());
+        }
         for (i, prim) in self.prims.iter().enumerate() {
-            if is_placeable(prim) == self.unplaced.binary_search(&(i as u32)).is_ok() {
-                return fail(format!("primitive {i}: wrongly (un)placed"));
+            if self.fits(prim) == self.unplaced.binary_search(&(i as u32)).is_ok() {
+                let why = if !is_placeable(prim) {
+                    "has a NaN or infinite coordinate"
+                } else if self.fits(prim) {
+                    "fits in the grid box"
+                } else {
+                    "sticks out of the grid box"
+                };
+                return fail(format!("primitive {i} {why} and is wrongly (un)placed"));
             }
-            if is_placeable(prim) {
-                let b = prim.bounds();
-                if !(self.bounds.contains(b.min) && self.bounds.contains(b.max)) {
-                    return fail(format!("primitive {i} sticks out of the grid box"));
-                }
-            }
+        }
+        if self
+            .unplaced
+            .last()
+            .is_some_and(|&i| i as usize >= self.prims.len())
+        {
+            return fail("the unplaced list names a primitive out of range".into());
         }
         let placed = self.prims.len() - self.unplaced.len();
         if self.cell_count().saturating_mul(placed) <= EXHAUSTIVE_PAIRS {
@@ -65,13 +77,7 @@ impl<P: Primitive> Grid<P> {
         if self.dims[dim..].iter().any(|&n| n != 1 && cells > 0) {
             return fail(format!("unused axes must have one cell: {:?}", self.dims));
         }
-        if self.cell_start.len() != cells + 1
-            || self.cell_start.first() != Some(&0)
-            || self.cell_start.last().map(|&n| n as usize) != Some(self.cell_prims.len())
-            || self.cell_start.windows(2).any(|w| w[0] > w[1])
-        {
-            return fail("cell offsets are not a partition of the lists".into());
-        }
+        self.check_cell_lists(cells)?;
         if cells == 0 {
             return Ok(());
         }
@@ -98,6 +104,42 @@ impl<P: Primitive> Grid<P> {
         Ok(())
     }
 
+    /// One list place per cell, each inside the list array with its length within its room,
+    /// no two rooms sharing an entry, and the entries that hold no list entry counted as
+    /// spare.
+    fn check_cell_lists(&self, cells: usize) -> Result<(), ValidationError> {
+        if self.cell_lists.len() != cells {
+            return fail(format!(
+                "{} cell lists for {cells} cells",
+                self.cell_lists.len()
+            ));
+        }
+        let mut owner = vec![u32::MAX; self.cell_prims.len()];
+        for (c, list) in self.cell_lists.iter().enumerate() {
+            let end = list.start as usize + list.room as usize;
+            if list.len > list.room || end > owner.len() {
+                return fail(format!("cell {c}: its list {list:?} overruns its room"));
+            }
+            for (slot, o) in owner[list.start as usize..end].iter_mut().enumerate() {
+                if *o != u32::MAX {
+                    return fail(format!(
+                        "cells {o} and {c} share list entry {}",
+                        list.start as usize + slot
+                    ));
+                }
+                *o = c as u32;
+            }
+        }
+        let spare = self.cell_prims.len() - self.listed();
+        if spare != self.spare {
+            return fail(format!(
+                "{spare} entries of the list array are spare, {} counted",
+                self.spare
+            ));
+        }
+        Ok(())
+    }
+
     /// Every placed primitive against every cell: listed exactly where it touches (or, should
     /// the exact test refuse every cell, in all the cells its box touches; see `cells_of`).
     fn check_every_cell(&self) -> Result<(), ValidationError> {
@@ -106,7 +148,7 @@ impl<P: Primitive> Grid<P> {
             .map(|c| self.cell_box(self.cell_coords(c)))
             .collect();
         for (i, prim) in self.prims.iter().enumerate() {
-            if !is_placeable(prim) {
+            if !self.fits(prim) {
                 continue;
             }
             let mut touched = (0..boxes.len())
@@ -141,7 +183,7 @@ impl<P: Primitive> Grid<P> {
         let mut cells = Vec::new();
         let mut total = 0;
         for (i, prim) in self.prims.iter().enumerate() {
-            if !is_placeable(prim) {
+            if !self.fits(prim) {
                 continue;
             }
             self.cells_of(prim, &mut cells);
@@ -158,10 +200,10 @@ impl<P: Primitive> Grid<P> {
                 }
             }
         }
-        if total != self.cell_prims.len() {
+        if total != self.listed() {
             return fail(format!(
                 "{} references, but the primitives touch {total} cells",
-                self.cell_prims.len()
+                self.listed()
             ));
         }
         Ok(())

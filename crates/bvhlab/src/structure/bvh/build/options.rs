@@ -84,12 +84,12 @@ impl BvhOptions {
     }
 
     /// `max_leaf_size`, at least 1.
-    pub(super) fn leaf_size(&self) -> usize {
+    pub(in crate::structure::bvh) fn leaf_size(&self) -> usize {
         self.max_leaf_size.max(1)
     }
 
     /// `max_depth`, at most [`MAX_DEPTH`].
-    pub(super) fn depth_limit(&self) -> usize {
+    pub(in crate::structure::bvh) fn depth_limit(&self) -> usize {
         self.max_depth.min(MAX_DEPTH)
     }
 

@@ -122,7 +122,10 @@ impl<B, P: Primitive> Bvh<B, P> {
         &self.options
     }
 
-    /// The SAH cost the tree had when it was built (before any [`refit`](Bvh::refit)); see
+    /// The SAH cost the tree had when it was built (before any [`refit`](Bvh::refit),
+    /// [`insert`](Bvh::insert), [`remove`](Bvh::remove), [`replace`](Bvh::replace) or
+    /// [`optimize_by_reinsertion`](Bvh::optimize_by_reinsertion), which leave it as it was,
+    /// so that [`needs_rebuild`](Bvh::needs_rebuild) measures against the last build); see
     /// [`Stats::sah_cost`](crate::structure::Stats::sah_cost).
     pub fn build_sah_cost(&self) -> Option<f32> {
         self.build_sah_cost
