@@ -28,4 +28,8 @@ cp index.html web/loader.js web/main.js web/lab.css dist/
 # The example course page that embeds two labs, and the script it uses to drive them.
 cp web/embed.html web/embed.js web/embed.css web/bvhlab-embed.js web/course.html web/course.js dist/
 
-if command -v node >/dev/null; then node web/size.mjs dist; fi
+if command -v node >/dev/null; then
+  node web/size.mjs dist
+  # The lab in one file, for classrooms without a server (opened from disk).
+  node web/offline.mjs dist
+fi

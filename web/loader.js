@@ -39,7 +39,8 @@
   function servedHint() {
     return 'run "bash web/serve.sh" in the bvh-lab repository, or any static web server in ' +
       'this folder (for example "python3 -m http.server 8000", then open ' +
-      'http://localhost:8000/index.html)';
+      'http://localhost:8000/index.html), or open bvh-lab-offline.html from this folder, ' +
+      'the lab in one file that runs from disk';
   }
 
   function sandboxed() {
@@ -102,7 +103,9 @@
     },
   };
 
-  if (location.protocol === 'file:') {
+  // The single-file page (web/offline.mjs) carries its code inside and runs from disk.
+  var offline = document.documentElement.hasAttribute('data-offline');
+  if (location.protocol === 'file:' && !offline) {
     say(FAILED + 'this page was opened as a file (file://), and browsers run the lab\'s code ' +
       'only from a web server: it must be served over http(s). To do so, ' + servedHint() + '.',
       true);
