@@ -19,6 +19,8 @@
   var STILL_LOADING_S = 20;
   var FAILED = 'The lab could not start: ';
   var done = false;
+  // The single-file page (web/offline.mjs) carries its code inside and runs from disk.
+  var offline = document.documentElement.hasAttribute('data-offline');
   // The lab's files, as the page names them (relative: the page may live in any folder).
   var FILES = ['main.js', 'app.js', 'app_bg.wasm'];
 
@@ -77,6 +79,10 @@
 
   // Finds the first of the lab's files the server does not send right; says it, or `fallback`.
   function diagnose(fallback) {
+    if (offline) {
+      say(FAILED + fallback, true);
+      return;
+    }
     var found = null;
     var chain = Promise.resolve();
     FILES.forEach(function (name) {
@@ -103,8 +109,6 @@
     },
   };
 
-  // The single-file page (web/offline.mjs) carries its code inside and runs from disk.
-  var offline = document.documentElement.hasAttribute('data-offline');
   if (location.protocol === 'file:' && !offline) {
     say(FAILED + 'this page was opened as a file (file://), and browsers run the lab\'s code ' +
       'only from a web server: it must be served over http(s). To do so, ' + servedHint() + '.',
