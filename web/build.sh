@@ -19,13 +19,17 @@ ensure_wasm_toolchain web/build.sh
 # Without the symbol names (the wasm's "name" section, 1.4 MB of the 11.7 MB): a panic's
 # message still names the file and line.
 CARGO_PROFILE_RELEASE_STRIP=symbols cargo build -p bvhlab-app --release --target wasm32-unknown-unknown
-wasm=target/wasm32-unknown-unknown/release/bvhlab-app.wasm
+wasm=${CARGO_TARGET_DIR:-target}/wasm32-unknown-unknown/release/bvhlab-app.wasm
 
 rm -rf dist
 mkdir -p dist
 wasm-bindgen --target web --no-typescript --out-dir dist --out-name app "$wasm"
-cp index.html web/main.js web/lab.css dist/
+cp index.html web/loader.js web/main.js web/lab.css dist/
 # The example course page that embeds two labs, and the script it uses to drive them.
 cp web/embed.html web/embed.js web/embed.css web/bvhlab-embed.js web/course.html web/course.js dist/
 
-if command -v node >/dev/null; then node web/size.mjs dist; fi
+if command -v node >/dev/null; then
+  node web/size.mjs dist
+  # The lab in one file, for classrooms without a server (opened from disk).
+  node web/offline.mjs dist
+fi

@@ -12,18 +12,33 @@
 // commands only from its own origin and from origins its address names with origin=...;
 // replies go only to the window that asked. The commands are documented in the README
 // ("Embedding the lab") and in crates/bvhlab-app/src/embed/command.rs.
+//
+//   const lab = new BvhLab(frame, { fitHeight: true });   // the iframe takes the lab's height
+//   lab.onSize(({ height }) => console.log(`the lab would like ${height} px`));
+//
+// A frame sandboxed without allow-same-origin (<iframe sandbox="allow-scripts">) has the
+// origin "null": its messages are taken from that frame's window alone, and commands go to it
+// with the target origin "*" (the browser cannot name an opaque origin).
 
 export class BvhLab {
-  /// `frame`: the <iframe> showing the lab. `origin`: the lab's origin (by default, that of
-  /// the iframe's address).
-  constructor(frame, origin = new URL(frame.src, location.href).origin) {
+  /// `frame`: the <iframe> showing the lab. `options`: `origin`, the lab's origin (by
+  /// default, that of the iframe's address; a string in place of the options is taken as
+  /// it), and `fitHeight`: when true, the iframe's height follows the height the lab asks
+  /// for (its `size` message, see onSize).
+  constructor(frame, options = {}) {
+    const { origin = new URL(frame.src, location.href).origin, fitHeight = false } =
+      typeof options === 'string' ? { origin: options } : options;
     this.frame = frame;
-    this.origin = origin;
+    // Sandboxed without allow-same-origin: the lab's messages come from the origin "null".
+    const opaque = frame.sandbox.length > 0 && !frame.sandbox.contains('allow-same-origin');
+    this.origin = opaque ? 'null' : origin;
+    this.target = opaque ? '*' : origin;
     this.next = 1;
     this.waiting = new Map();
-    this.listeners = { panic: [], progress: [] };
+    this.listeners = { panic: [], progress: [], size: [] };
+    if (fitHeight) this.onSize(({ height }) => { frame.style.height = `${height}px`; });
     window.addEventListener('message', (event) => {
-      if (event.source !== frame.contentWindow || event.origin !== origin) return;
+      if (event.source !== frame.contentWindow || event.origin !== this.origin) return;
       const data = event.data;
       if (data?.bvhlab === 'reply' && this.waiting.has(data.id)) {
         const { resolve, reject } = this.waiting.get(data.id);
@@ -37,6 +52,9 @@ export class BvhLab {
         for (const listener of this.listeners.progress) {
           listener({ lesson, step, steps, goal_reached, goals_reached, goals, exercise, score });
         }
+      } else if (data?.bvhlab === 'size' && Number.isFinite(data.height) && data.height > 0) {
+        this.height = data.height;
+        for (const listener of this.listeners.size) listener({ height: data.height });
       }
     });
   }
@@ -47,7 +65,7 @@ export class BvhLab {
     const id = this.next++;
     return new Promise((resolve, reject) => {
       this.waiting.set(id, { resolve, reject });
-      this.frame.contentWindow.postMessage({ bvhlab: 'command', id, command }, this.origin);
+      this.frame.contentWindow.postMessage({ bvhlab: 'command', id, command }, this.target);
     });
   }
 
@@ -74,6 +92,15 @@ export class BvhLab {
   /// `exercise` ("2D AABB tree: first hit") and `score` ({first_time, after_hint, shown})
   /// while Predict is on.
   onProgress(listener) { this.listeners.progress.push(listener); }
+
+  /// Calls `listener({height})` with the height in CSS pixels the lab would like its frame
+  /// to have: when it starts, and when the student shows or hides its panels (720 with the
+  /// panels beside the view, 600 for the view and the tree diagram, 480 for the view alone).
+  /// A listener added later is called at once with the last height heard, if any.
+  onSize(listener) {
+    this.listeners.size.push(listener);
+    if (this.height) listener({ height: this.height });
+  }
 
   /// Opens lesson `name` at `step` (1 is its first).
   goToLesson(lesson, step = 1) { return this.send({ type: 'go-to-lesson', lesson, step }); }

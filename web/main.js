@@ -11,7 +11,12 @@ const crash = document.getElementById('crash');
 
 globalThis.bvhlabPanicked = (message, storageKey) => {
   document.getElementById('crash-message').textContent = message;
-  const saved = storageKey ? localStorage.getItem(storageKey) : null;
+  let saved = null;
+  try {
+    saved = storageKey ? localStorage.getItem(storageKey) : null;
+  } catch {
+    // No storage in this frame (sandboxed without allow-same-origin): nothing was saved.
+  }
   const download = document.getElementById('crash-download');
   download.hidden = saved == null;
   download.onclick = () => {
@@ -34,11 +39,28 @@ document.getElementById('crash-fresh').onclick = () => {
   location.replace(address);
 };
 
+// web/loader.js (a classic script that runs first) explains a start that fails or hangs.
+const loader = globalThis.bvhlabLoader;
 try {
   const app = await import('./app.js');
   await app.default();
-  status.remove();
+  // The lab starts its renderer after this; the loading line goes with its first report, and
+  // stays to show why if the renderer cannot start (web.rs writes the reason into it).
+  const report = document.getElementById('lab-status');
+  const started = () => (loader ? loader.started() : status.remove());
+  if (report.hasAttribute('data-report')) {
+    started();
+  } else {
+    const watch = new MutationObserver(() => {
+      watch.disconnect();
+      started();
+    });
+    watch.observe(report, { attributes: true, attributeFilter: ['data-report'] });
+  }
 } catch (error) {
-  status.textContent = 'The lab could not start: ' + error.message +
-    '. Build it with "bash web/serve.sh" from the repository root.';
+  if (loader) {
+    loader.failed(error);
+  } else {
+    status.textContent = `The lab could not start: ${error.message}.`;
+  }
 }

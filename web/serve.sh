@@ -20,7 +20,8 @@ if command -v node >/dev/null; then
   exec node web/server.mjs "$port"
 else
   echo "node is not installed: serving dist/ with Python's http.server instead"
-  echo "(no Content-Security-Policy header; install Node.js for web/server.mjs)."
+  echo "(no Content-Security-Policy header, and no Access-Control-Allow-Origin, so a frame"
+  echo "sandboxed without allow-same-origin cannot load the lab; install Node.js for web/server.mjs)."
   [ "$port" != 0 ] && echo "bvh-lab is served at http://127.0.0.1:$port/"
   exec python3 -m http.server --bind 127.0.0.1 --directory dist "$port"
 fi

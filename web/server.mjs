@@ -7,6 +7,11 @@
 // lets the page compile its WebAssembly; no inline script or style, no eval. An inline script
 // in a served page would be allowed by its hash (computed here from the file as served), never
 // by 'unsafe-inline'; the lab's pages have none.
+//
+// Scripts and WebAssembly also carry "Access-Control-Allow-Origin: *": a course page that embeds
+// the lab in an <iframe sandbox="allow-scripts"> (without allow-same-origin) gives it the origin
+// "null", so its module scripts and its WebAssembly fetch are cross-origin requests, which the
+// browser completes only with that header. The files are public and no cookies go with them.
 
 import { createHash } from 'node:crypto';
 import { createServer } from 'node:http';
@@ -51,6 +56,9 @@ function policyFor(inlineScripts = []) {
   ].join('; ');
 }
 const policy = policyFor();
+
+// The files a frame of origin "null" loads with CORS: module scripts and the WebAssembly.
+const corsExtensions = new Set(['.js', '.mjs', '.wasm']);
 
 // The bodies of the inline <script> elements of an HTML page (those without a src attribute).
 function inlineScripts(html) {
@@ -101,6 +109,7 @@ const server = createServer(async (request, response) => {
     const body = await readFile(file);
     const extension = extname(file).toLowerCase();
     response.writeHead(200, {
+      ...(corsExtensions.has(extension) ? { 'Access-Control-Allow-Origin': '*' } : {}),
       'Content-Type': types[extension] ?? 'application/octet-stream',
       'Content-Length': body.length,
       'Content-Security-Policy':

@@ -20,7 +20,7 @@ const rows = files.map((name) => {
     }).length,
   };
 });
-const lab = rows.filter((r) => ['index.html', 'main.js', 'lab.css', 'app.js', 'app_bg.wasm'].includes(r.name));
+const lab = rows.filter((r) => ['index.html', 'loader.js', 'main.js', 'lab.css', 'app.js', 'app_bg.wasm'].includes(r.name));
 const total = (key, list) => list.reduce((sum, r) => sum + r[key], 0);
 const mb = (n) => (n >= 1e6 ? `${(n / 1e6).toFixed(2)} MB` : `${(n / 1e3).toFixed(1)} kB`);
 for (const r of rows) {

@@ -2,7 +2,8 @@
 # bvh-lab's browser end-to-end test, from scratch on a fresh machine: installs what it needs
 # (Node.js and Debian's Chromium with software Vulkan/GL when missing and we are root, then the
 # pinned playwright-core and pngjs with npm ci), builds the page (web/build.sh), serves it on a
-# free local port (web/server.mjs), runs tests/e2e/lab.test.mjs against it, and stops the server.
+# free local port (web/server.mjs), runs the tests of tests/e2e/ against it (lab, view3d, embed,
+# hosting), and stops the server.
 # The exit code is the test's. Screenshots and the server's log go to target/e2e/.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -59,3 +60,4 @@ node tests/e2e/lab.test.mjs "$url"
 node tests/e2e/view3d.test.mjs "$url"
 node tests/e2e/embed.test.mjs "$url"
 node tests/e2e/lesson.test.mjs "$url"
+node tests/e2e/hosting.test.mjs "$url"

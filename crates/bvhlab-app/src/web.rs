@@ -57,7 +57,11 @@ pub fn start() {
             log::error!("the page has no <canvas id=\"lab\">");
             return;
         };
-        let start = start_state();
+        let mut start = start_state();
+        let storage = start.storage;
+        if !storage {
+            say_no_storage(&mut start.app);
+        }
         let origins = Origins::new(&start.params.origins);
         let inbox: Inbox = Rc::new(RefCell::new(Scripting::new(start.params.debug_panic)));
         let runner = eframe::WebRunner::new();
@@ -79,11 +83,16 @@ pub fn start() {
                         autosave: Autosave::new(start.saved),
                         key: start.key,
                         hold: start.saved_failed,
-                        storage_failed: false,
+                        storage: if storage {
+                            Storage::Working
+                        } else {
+                            Storage::Missing
+                        },
                         inbox,
                         origins,
                         announced: false,
                         progress: None,
+                        height: None,
                     }))
                 }),
             )
@@ -107,6 +116,8 @@ struct StartState {
     /// The saved state could not be restored: keep it until the student changes something.
     saved_failed: bool,
     params: StartParams,
+    /// Whether this browser frame gives the lab `localStorage` (see [`local_storage`]).
+    storage: bool,
 }
 
 /// The lab the page opens with ([`crate::embed::start`]: a `#s=` link, then the state saved
@@ -122,6 +133,7 @@ fn start_state() -> StartState {
             key: STORAGE_KEY.to_owned(),
             saved_failed: false,
             params: StartParams::default(),
+            storage: false,
         };
     };
     let location = window.location();
@@ -129,10 +141,9 @@ fn start_state() -> StartState {
     let search = location.search().unwrap_or_default();
     let params = StartParams::parse(&search);
     let key = params.storage_key();
-    let saved = window
-        .local_storage()
-        .ok()
-        .flatten()
+    let storage = local_storage();
+    let saved = storage
+        .as_ref()
         .and_then(|s| s.get_item(&key).ok().flatten());
     let fragment = (!hash.is_empty()).then_some(hash.as_str());
     let start = crate::embed::start(fragment, &params, saved.as_deref());
@@ -151,7 +162,29 @@ fn start_state() -> StartState {
         key,
         saved_failed: start.saved_failed,
         params,
+        storage: storage.is_some(),
     }
+}
+
+/// The browser's `localStorage`, if this frame may use it. A frame sandboxed without
+/// `allow-same-origin` (and a browser with storage turned off) throws on the mere access.
+fn local_storage() -> Option<web_sys::Storage> {
+    web_sys::window()?.local_storage().ok().flatten()
+}
+
+/// Said once, when the lab starts without storage.
+const NO_STORAGE: &str = "This lab cannot save in this browser frame (the browser gives it no \
+                          storage here), so a reload starts over; \"Export scene\" keeps your \
+                          work as a file where the page allows downloads.";
+
+/// Adds [`NO_STORAGE`] to the status line (after what the start-up said).
+fn say_no_storage(app: &mut LabApp) {
+    let message = match app.lab().message() {
+        Some(said) => format!("{said} {NO_STORAGE}"),
+        None => NO_STORAGE.to_owned(),
+    };
+    let said = app.apply(crate::model::Action::SetMessage(Some(message)));
+    debug_assert!(said.is_ok(), "a message always applies");
 }
 
 /// Removes a share link's fragment from the address (keeping path and query), so that a
@@ -243,8 +276,10 @@ struct WebLab {
     /// The start-up failed and fell back to the default scene: keep the state saved earlier
     /// until the student changes something (taken after the first frame, which fits the view).
     hold: bool,
-    /// Whether the last write failed (said once in the status line, not every frame).
-    storage_failed: bool,
+    /// Whether the state reaches `localStorage`.
+    storage: Storage,
+    /// The preferred height last posted to the embedding page ([`crate::embed::size`]).
+    height: Option<u32>,
 }
 
 impl eframe::App for WebLab {
@@ -276,6 +311,20 @@ impl eframe::App for WebLab {
             crate::embed::browser::announce(&self.origins, message);
         }
         self.progress = progress;
+        // The embedding page hears of the height the lab would like (bvhlab-embed.js's
+        // fitHeight applies it to the iframe).
+        let height =
+            crate::embed::size::preferred_height(&self.app.ui.panels, self.app.lab().dimension());
+        if self.height != Some(height) {
+            self.height = Some(height);
+            crate::embed::browser::announce(
+                &self.origins,
+                &crate::embed::size::size_message(height),
+            );
+        }
+        if self.storage == Storage::Missing {
+            return;
+        }
         if std::mem::take(&mut self.hold) {
             self.autosave.keep_current(self.app.lab());
         }
@@ -293,16 +342,14 @@ impl eframe::App for WebLab {
 impl WebLab {
     /// Writes the state to `localStorage`; says once when that fails (storage full, or off).
     fn store(&mut self, json: &str) {
-        let written = web_sys::window()
-            .and_then(|w| w.local_storage().ok().flatten())
-            .is_some_and(|s| s.set_item(&self.key, json).is_ok());
+        let written = local_storage().is_some_and(|s| s.set_item(&self.key, json).is_ok());
         if written {
-            self.storage_failed = false;
+            self.storage = Storage::Working;
             return;
         }
         self.autosave.write_failed();
-        if !self.storage_failed {
-            self.storage_failed = true;
+        if self.storage == Storage::Working {
+            self.storage = Storage::Failing;
             let said = self.app.apply(crate::model::Action::SetMessage(Some(
                 "This browser did not keep the lab's state (storage full or off): export the \
                  scene to keep it."
@@ -311,6 +358,17 @@ impl WebLab {
             debug_assert!(said.is_ok(), "a message always applies");
         }
     }
+}
+
+/// Whether the lab's state reaches the browser's `localStorage`.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Storage {
+    /// The frame has none: nothing is saved (the status line said so at the start).
+    Missing,
+    /// The last write worked (or none was tried yet).
+    Working,
+    /// The last write failed (said once in the status line, not every frame).
+    Failing,
 }
 
 /// Writes the report into `#lab-status` when it changed.

@@ -17,6 +17,7 @@
 pub mod browser;
 pub mod command;
 pub mod params;
+pub mod size;
 
 use std::collections::VecDeque;
 
