@@ -2,17 +2,13 @@
 //! browser asks for, keeping that state in `localStorage` as it changes, publishing the lab's
 //! [`Report`] into `#lab-status` (text for screen readers, JSON in `data-report` for the page,
 //! the browser test and course pages that embed the lab), and the browser's side of saving
-//! and sharing: downloads, the file dialog, dropped files and the clipboard.
-//!
-//! The browser answers file reads and clipboard writes later (promises); the answers wait in
-//! an inbox ([`take_news`]) that the lab reads on its next frame.
+//! and sharing (`files.rs`: the file dialog, dropped files and the clipboard).
 
 use std::cell::RefCell;
 use std::rc::Rc;
 
 use wasm_bindgen::JsCast;
 use wasm_bindgen::prelude::*;
-use wasm_bindgen_futures::JsFuture;
 
 use crate::LabApp;
 use crate::embed::browser::{Inbox, Origins, on_panic_tell_page};
@@ -20,27 +16,14 @@ use crate::embed::{Scripting, StartParams};
 use crate::persist::{Autosave, AutosaveStep, STORAGE_KEY};
 use crate::report::Report;
 
+mod files;
+
+use files::deliver;
+pub use files::{News, copy_text, pick_file, read_dropped, take_news};
+
 thread_local! {
     /// The JSON last written, so the DOM is touched only when something changed.
     static LAST: RefCell<String> = const { RefCell::new(String::new()) };
-    /// What the browser answered since the last frame.
-    static INBOX: RefCell<Vec<News>> = const { RefCell::new(Vec::new()) };
-}
-
-/// Something the browser answered.
-pub enum News {
-    /// A file picked in the dialog or dropped on the page was read (or could not be).
-    Opened {
-        /// Its name.
-        name: String,
-        /// Its bytes, or why they could not be read.
-        bytes: Result<Vec<u8>, String>,
-    },
-    /// The clipboard took the share link (or refused it).
-    Copied(Result<(), String>),
-    /// A share link was opened in the page already showing the lab (only the address's
-    /// fragment changed, so the page did not reload): its fragment.
-    Link(String),
 }
 
 /// Starts the lab on the canvas `#lab`.
@@ -398,17 +381,6 @@ pub fn publish(report: &Report) {
     }
 }
 
-/// What the browser answered since the last call.
-pub fn take_news() -> Vec<News> {
-    INBOX.with(|inbox| std::mem::take(&mut *inbox.borrow_mut()))
-}
-
-/// Puts an answer in the inbox and asks for a frame to read it.
-fn deliver(ctx: &egui::Context, news: News) {
-    INBOX.with(|inbox| inbox.borrow_mut().push(news));
-    ctx.request_repaint();
-}
-
 /// The page's address without query or fragment (origin and path), for share links.
 pub fn page_address() -> String {
     web_sys::window()
@@ -421,105 +393,4 @@ pub fn page_address() -> String {
             )
         })
         .unwrap_or_default()
-}
-
-/// Copies `text` to the clipboard; the outcome arrives as [`News::Copied`].
-pub fn copy_text(ctx: &egui::Context, text: &str) {
-    let clipboard = web_sys::window().map(|w| w.navigator().clipboard());
-    // `navigator.clipboard` is undefined outside secure contexts (plain http).
-    let Some(clipboard) = clipboard.filter(|c| !c.is_undefined()) else {
-        deliver(
-            ctx,
-            News::Copied(Err("this page may not use the clipboard".to_owned())),
-        );
-        return;
-    };
-    let promise = clipboard.write_text(text);
-    let ctx = ctx.clone();
-    wasm_bindgen_futures::spawn_local(async move {
-        let result = JsFuture::from(promise)
-            .await
-            .map(|_| ())
-            .map_err(|e| describe(&e));
-        deliver(&ctx, News::Copied(result));
-    });
-}
-
-/// Opens the browser's file dialog for one file of the `accept` types; the file arrives as
-/// [`News::Opened`] once read.
-///
-/// # Errors
-/// When the page cannot make the dialog's `<input type=file>`.
-pub fn pick_file(ctx: &egui::Context, accept: &str) -> Result<(), String> {
-    let document = web_sys::window()
-        .and_then(|w| w.document())
-        .ok_or("the page has no document")?;
-    let input: web_sys::HtmlInputElement = document
-        .create_element("input")
-        .map_err(|e| describe(&e))?
-        .dyn_into()
-        .map_err(|_| "not an input element".to_owned())?;
-    input.set_type("file");
-    input.set_accept(accept);
-    let picked = input.clone();
-    let ctx = ctx.clone();
-    // Called once, when a file is chosen (a cancelled dialog never calls it).
-    let on_change = Closure::once_into_js(move || {
-        if let Some(file) = picked.files().and_then(|files| files.get(0)) {
-            let limit = crate::persist::read_limit(&file.name());
-            read_file(ctx, file, limit);
-        }
-    });
-    input.set_onchange(Some(on_change.unchecked_ref()));
-    input.click();
-    Ok(())
-}
-
-/// Reads a file dropped on the page; it arrives as [`News::Opened`].
-pub fn read_dropped(ctx: &egui::Context, file: &egui::DroppedFileHandle, limit: usize) {
-    let name = file.path().display().to_string();
-    match file.web_file() {
-        Some(web_file) => read_file(ctx.clone(), web_file.clone(), limit),
-        None => deliver(
-            ctx,
-            News::Opened {
-                name,
-                bytes: Err("the browser gave no file to read".to_owned()),
-            },
-        ),
-    }
-}
-
-/// Reads `file`'s bytes (`Blob.arrayBuffer()`: binary meshes must not pass through text),
-/// refusing it unread when it is over `limit` bytes.
-fn read_file(ctx: egui::Context, file: web_sys::File, limit: usize) {
-    let name = file.name();
-    if file.size() > limit as f64 {
-        let bytes = Err(format!(
-            "it is {:.1} MiB; the lab reads at most {} MiB",
-            file.size() / f64::from(1 << 20),
-            limit >> 20
-        ));
-        deliver(&ctx, News::Opened { name, bytes });
-        return;
-    }
-    wasm_bindgen_futures::spawn_local(async move {
-        let bytes = JsFuture::from(file.array_buffer())
-            .await
-            .map_err(|e| describe(&e))
-            .map(|buffer| js_sys::Uint8Array::new(&buffer).to_vec());
-        deliver(&ctx, News::Opened { name, bytes });
-    });
-}
-
-/// A JavaScript error as text.
-fn describe(error: &JsValue) -> String {
-    error
-        .as_string()
-        .or_else(|| {
-            error
-                .dyn_ref::<js_sys::Error>()
-                .map(|e| String::from(e.message()))
-        })
-        .unwrap_or_else(|| format!("{error:?}"))
 }
