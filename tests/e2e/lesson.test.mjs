@@ -1,7 +1,7 @@
 // bvh-lab's lessons and Predict in the browser, as a student does them:
 //
-// 1. Keyboard only, at a laptop's 1280x720: the page opens on a lesson's first step; End
-//    reaches its goal; ] moves to the next step; R picks the ray's start and the arrow keys
+// 1. Keyboard only, at a laptop's 1280x720: Tab reaches the first lesson's button on a first
+//    visit and Enter opens it; End reaches its goal; ] moves to the next step; R picks the ray's start and the arrow keys
 //    move it (the report's ray changes); P switches Predict on, and the keys 1 and 2 answer
 //    its questions, right and wrong (a wrong answer keeps the step and gives a hint, the
 //    other answer then counts "after a hint"); the live region says the question and the
@@ -55,13 +55,21 @@ async function keyboardOnly(browser, summary) {
   const page = await browser.newPage({ viewport: { width: 1280, height: 720 } });
   const problems = [];
   watch(page, problems);
-  await page.goto(new URL('index.html?fresh=1&lesson=queries&step=1', url).href);
-  let r = await until(page, (r) => r.ready && r.lesson?.step === 1 && r.playback?.[0]?.steps > 0,
-    TIMEOUT_MS, 'the lesson open');
-  check(!r.lesson.goal_reached, `the step starts undone: ${JSON.stringify(r.lesson)}`);
-  await page.screenshot({ path: join(outDir, 'lesson-keyboard-start.png') });
-  // The page has the keyboard without a click: the lab's canvas takes the focus.
+  await page.goto(new URL('index.html?fresh=1', url).href);
+  let r = await until(page, (r) => r.ready, TIMEOUT_MS, 'the lab');
+  check(!r.lesson, 'no lesson open on a first visit');
+  // The page has the keyboard without a click: the lab's canvas takes the focus. Tab walks
+  // the widgets in order (the panel's tabs, the Lessons header, ...); the sixth press is on
+  // the first lesson's button (a visible focus ring: lesson-keyboard-focus.png), and Enter
+  // presses it.
   await page.focus('canvas');
+  for (let i = 0; i < 6; i++) await page.keyboard.press('Tab');
+  await page.waitForTimeout(300);
+  await page.screenshot({ path: join(outDir, 'lesson-keyboard-focus.png') });
+  r = await press(page, 'Enter', (r) => r.lesson?.lesson === 'queries' && r.playback?.[0]?.steps > 0,
+    'Tab and Enter open the first lesson');
+  check(r.lesson.step === 1 && !r.lesson.goal_reached, `the step starts undone: ${JSON.stringify(r.lesson)}`);
+  await page.screenshot({ path: join(outDir, 'lesson-keyboard-start.png') });
   r = await press(page, 'End', (r) => r.lesson?.goal_reached, 'End reaches the goal');
   summary.keyboardGoal = `step 1 done by End (${r.playback[0].steps} steps)`;
   r = await press(page, 'BracketRight', (r) => r.lesson?.step === 2, '] opens step 2');
