@@ -3,11 +3,11 @@
 //! A question is read from the recording itself: the event about to be shown (and, where the
 //! answer takes more than one event, those after it) and the state before it ([`Snapshot`]:
 //! the nodes waiting, the best so far, the cells entered). Only steps where something is
-//! decided get a question: which node is taken next when two or more wait ([`walk`]);
+//! decided get a question: which node is taken next when two or more wait (`walk.rs`);
 //! whether the ray meets a volume, and whether a node is kept or pruned against the best so
 //! far; which child is visited first; whether the ray hits a primitive, or a primitive
-//! becomes the nearest ([`leaf`]); which cell the ray enters next ([`cell`]); whether a node
-//! being built becomes a leaf, or across which axis it is split ([`build`]). The other steps
+//! becomes the nearest (`leaf.rs`); which cell the ray enters next (`cell.rs`); whether a node
+//! being built becomes a leaf, or across which axis it is split (`build.rs`). The other steps
 //! (entering a node just chosen, a new best the question before gave away) are shown without
 //! one.
 //!
