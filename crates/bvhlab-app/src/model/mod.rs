@@ -151,6 +151,14 @@ impl Lab {
         }
     }
 
+    /// The playback step shown in the half shown (its recordings' length in live mode).
+    pub fn shown_step(&self) -> usize {
+        match self.dimension {
+            Dimension::Two => self.two.half.playback.shown(self.two.half.steps()),
+            Dimension::Three => self.three.half.playback.shown(self.three.half.steps()),
+        }
+    }
+
     /// Applies every action in order, stopping at the first refused one; returns its error.
     ///
     /// # Errors

@@ -32,10 +32,7 @@ pub fn predict_block(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
         return;
     }
     let steps = lab.steps();
-    let step = match lab.dimension() {
-        crate::model::Dimension::Two => lab.two().half.playback.shown(steps),
-        crate::model::Dimension::Three => lab.three().half.playback.shown(steps),
-    };
+    let step = lab.shown_step();
     if let Some(feedback) = state.feedback_at(step) {
         // The words say how it went ("Right: ...", "Not quite. Hint: ...", "The answer:
         // ..."); the colour repeats it.

@@ -7,8 +7,8 @@ use std::fmt::Write as _;
 
 use serde::Serialize;
 
+use crate::model::Lab;
 use crate::model::predict::Verdict;
-use crate::model::{Dimension, Lab};
 
 /// Predict's state, when it is on.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize)]
@@ -63,11 +63,7 @@ impl PredictReport {
         }
         let exercise = lab.exercise();
         let score = state.score(&exercise);
-        let steps = lab.steps();
-        let step = match lab.dimension() {
-            Dimension::Two => lab.two().half.playback.shown(steps),
-            Dimension::Three => lab.three().half.playback.shown(steps),
-        };
+        let step = lab.shown_step();
         Some(Self {
             exercise,
             score: ScoreReport {

@@ -250,16 +250,9 @@ impl Lab {
                 if !on {
                     return Ok(Note::Clear);
                 }
-                let (step, len) = match self.dimension {
-                    Dimension::Two => (self.two.half.playback, self.two.half.steps()),
-                    Dimension::Three => (self.three.half.playback, self.three.half.steps()),
-                };
-                if step.shown(len) >= len {
-                    self.reveal(0);
-                } else {
-                    // Stop playing, where it stands.
-                    self.reveal(step.shown(len));
-                }
+                // From the start when at the end; else where it stands, no longer playing.
+                let shown = self.shown_step();
+                self.reveal(if shown >= self.steps() { 0 } else { shown });
                 Ok(Note::Say(
                     "Predict is on: before each step that decides something, say what happens \
                      next."
