@@ -133,14 +133,15 @@ fn check_random<V: Vector>(seed: u64) {
             }
             assert!(d <= (s - p).length() + 1e-5);
         }
-        assert!(b.contains(b.closest_point(p).expect("non-empty")));
+        assert!(b.contains(b.closest_point(p).expect("non-empty").point));
 
         // Overlap iff the boxes share a point: test with the clamp of a random point into
         // one box, then into the other (a point of both exists iff that lands in both).
         let c = Aabb::from_points(&random_cloud::<V>(&mut rng, 3, 2.0));
         let witness = c
-            .closest_point(b.closest_point(c.center()).expect("non-empty"))
-            .expect("non-empty");
+            .closest_point(b.closest_point(c.center()).expect("non-empty").point)
+            .expect("non-empty")
+            .point;
         assert_eq!(
             b.overlaps(&c),
             b.contains(witness) && c.contains(witness),

@@ -63,7 +63,7 @@ fn two_dimensional_contract() -> Result<(), Box<dyn std::error::Error>> {
     let hit = Ray2::new(Vec2::ZERO, Vec2::new(0.5, 0.0))?;
     assert_eq!(segment.ray_hit(&hit), Some(2.0));
     assert_eq!(
-        segment.closest_point(Vec2::new(3.0, 0.5)),
+        segment.project_point(Vec2::new(3.0, 0.5)),
         Vec2::new(1.0, 0.5)
     );
 
@@ -109,7 +109,7 @@ fn three_dimensional_contract() -> Result<(), Box<dyn std::error::Error>> {
     assert_eq!(tri.a, Vec3::new(5.0, -1.0, -1.0));
     assert_eq!(tri.ray_hit(&ray), Some(7.5));
     assert_eq!(
-        tri.closest_point(Vec3::new(8.0, 0.0, 0.0)),
+        tri.project_point(Vec3::new(8.0, 0.0, 0.0)),
         Vec3::new(5.0, 0.0, 0.0)
     );
     let _ = (tri.b, tri.c);

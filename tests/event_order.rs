@@ -1293,11 +1293,11 @@ where
     for (name, prims) in scenes {
         let qs = queries(&mut rng, prims, 10);
         for method in methods {
-            for max_leaf_size in [1, 4] {
+            for leaf_size in [1, 4] {
                 let options = BvhOptions {
                     method,
-                    max_leaf_size,
-                    sphere_fit: if max_leaf_size == 1 {
+                    leaf_size,
+                    sphere_fit: if leaf_size == 1 {
                         SphereFit::Welzl
                     } else {
                         SphereFit::Ritter
@@ -1306,7 +1306,7 @@ where
                 };
                 let what = format!("{} over {name}, {options:?}", std::any::type_name::<B>());
                 let mut rec = Recorder::default();
-                let (tree, _) = Bvh::<B, P>::build_observed(prims, &options, &mut rec);
+                let tree = Bvh::<B, P>::build_observed(prims, &options, &mut rec);
                 let t = Tree::of(&tree);
                 tree_build(
                     &mut Stream::new(&rec.events, &format!("{what}, build")),
@@ -1351,7 +1351,7 @@ where
                         seen.add(&events);
                     }
                 }
-                let second = Bvh::<B, P>::with_options(other, &options);
+                let second = Bvh::<B, P>::build_with(other, &options);
                 let t2 = Tree::of(&second);
                 for (a, b, ta, tb) in [(&tree, &second, &t, &t2), (&second, &tree, &t2, &t)] {
                     let mut rec = Recorder::default();
@@ -1409,7 +1409,7 @@ fn check_plane_trees<P: Primitive>(
             );
             seen.add(&rec.events);
             check_queries(&tree, &qs, &what, &|s, kind| plane_tree(s, &t, kind), seen);
-            let second = KdTree::with_options(other, options);
+            let second = KdTree::build_with(other, options);
             let mut rec = Recorder::default();
             tree.collide_observed(&second, &mut rec);
             let what = format!("{what}, collide");
@@ -1433,7 +1433,7 @@ fn check_plane_trees<P: Primitive>(
             );
             seen.add(&rec.events);
             check_queries(&tree, &qs, &what, &|s, kind| plane_tree(s, &t, kind), seen);
-            let second = BspTree::with_options(other, options);
+            let second = BspTree::build_with(other, options);
             let mut rec = Recorder::default();
             second.collide_observed(&tree, &mut rec);
             let what = format!("{what}, collide");
@@ -1459,11 +1459,11 @@ fn check_orthtree<P: Primitive>(
     let options = [
         OrthtreeOptions::default(),
         OrthtreeOptions {
-            max_leaf_size: 1,
+            leaf_size: 1,
             ..OrthtreeOptions::default()
         },
         OrthtreeOptions {
-            max_leaf_size: 2,
+            leaf_size: 2,
             max_depth: 2,
         },
     ];
@@ -1472,7 +1472,7 @@ fn check_orthtree<P: Primitive>(
         for options in options {
             let what = format!("2^D tree over {name}, {options:?}");
             let mut rec = Recorder::default();
-            let tree = Orthtree::build_observed(prims, options, &mut rec);
+            let tree = Orthtree::build_observed(prims, &options, &mut rec);
             let t = Tree::of(&tree);
             let splits = P::Point::DIM;
             tree_build(
@@ -1489,7 +1489,7 @@ fn check_orthtree<P: Primitive>(
                 &|s, kind| orthtree(s, &t, unplaced, kind),
                 seen,
             );
-            let second = Orthtree::with_options(other, options);
+            let second = Orthtree::build_with(other, &options);
             let mut rec = Recorder::default();
             tree.collide_observed(&second, &mut rec);
             let what = format!("{what}, collide");
@@ -1528,7 +1528,7 @@ fn check_grid<P: Primitive>(scenes: &[(String, Vec<P>)], other: &[P], seed: u64,
         for options in options {
             let what = format!("grid over {name}, {options:?}");
             let mut rec = Recorder::default();
-            let grid = Grid::build_observed(prims, options, &mut rec);
+            let grid = Grid::build_observed(prims, &options, &mut rec);
             let t = Tree::of(&grid);
             grid_build(&mut Stream::new(&rec.events, &format!("{what}, build")), &t);
             seen.add(&rec.events);
@@ -1540,7 +1540,7 @@ fn check_grid<P: Primitive>(scenes: &[(String, Vec<P>)], other: &[P], seed: u64,
                 &|s, kind| self::grid(s, &t, unplaced, kind),
                 seen,
             );
-            let second = Grid::with_options(other, options);
+            let second = Grid::build_with(other, &options);
             let mut rec = Recorder::default();
             grid.collide_observed(&second, &mut rec);
             let what = format!("{what}, collide");

@@ -303,13 +303,13 @@ where
         SplitMethod::ObjectMedian,
         SplitMethod::BinnedSah,
     ] {
-        for max_leaf_size in [1, 4] {
+        for leaf_size in [1, 4] {
             let options = BvhOptions {
                 method,
-                max_leaf_size,
+                leaf_size,
                 ..BvhOptions::default()
             };
-            let what = format!("{method:?}, leaves of {max_leaf_size}");
+            let what = format!("{method:?}, leaves of {leaf_size}");
             bvh::<Aabb<P::Point>, P>(case, &format!("AABB tree, {what}"), &options);
             bvh::<Obb<P::Point>, P>(case, &format!("OBB tree, {what}"), &options);
             for sphere_fit in [SphereFit::Ritter, SphereFit::Welzl] {
@@ -332,8 +332,8 @@ where
         check(
             case,
             &what,
-            &Grid::with_options(a, options),
-            &Grid::with_options(b, options),
+            &Grid::build_with(a, &options),
+            &Grid::build_with(b, &options),
         );
     }
     for leaf_size in [1, 4] {
@@ -345,21 +345,21 @@ where
         check(
             case,
             &what,
-            &BspTree::with_options(a, &options),
-            &BspTree::with_options(b, &options),
+            &BspTree::build_with(a, &options),
+            &BspTree::build_with(b, &options),
         );
     }
-    for (max_leaf_size, max_depth) in [(1, 0), (1, 20), (4, 8)] {
+    for (leaf_size, max_depth) in [(1, 0), (1, 20), (4, 8)] {
         let options = OrthtreeOptions {
-            max_leaf_size,
+            leaf_size,
             max_depth,
         };
-        let what = format!("quadtree/octree, leaves of {max_leaf_size}, depth {max_depth}");
+        let what = format!("quadtree/octree, leaves of {leaf_size}, depth {max_depth}");
         check(
             case,
             &what,
-            &Orthtree::with_options(a, options),
-            &Orthtree::with_options(b, options),
+            &Orthtree::build_with(a, &options),
+            &Orthtree::build_with(b, &options),
         );
     }
     for (name, mut options) in [
@@ -381,8 +381,8 @@ where
             check(
                 case,
                 &what,
-                &KdTree::with_options(a, &options),
-                &KdTree::with_options(b, &options),
+                &KdTree::build_with(a, &options),
+                &KdTree::build_with(b, &options),
             );
         }
     }
@@ -396,12 +396,12 @@ where
     P: Primitive,
     NodeShape<P::Point>: From<B>,
 {
-    let tree = Bvh::<B, P>::with_options(&case.prims, options);
+    let tree = Bvh::<B, P>::build_with(&case.prims, options);
     check(
         case,
         what,
         &tree,
-        &Bvh::<B, P>::with_options(&case.other, options),
+        &Bvh::<B, P>::build_with(&case.other, options),
     );
     let brute = BruteForce::build(&case.prims);
     let exact = case.within_exact_range();

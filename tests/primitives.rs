@@ -76,7 +76,7 @@ fn triangle_closest_point_is_never_beaten_by_a_dense_sample() {
             random_vector(&mut rng, 2.0),
         );
         let p: Vec3 = random_vector(&mut rng, 4.0);
-        let q = tri.closest_point(p);
+        let q = tri.project_point(p);
         let reported = (q - p).length();
         // q lies on the triangle: in its plane and inside its edges.
         if let Some((_, min_bary)) = Ray3::new(q + tri.normal(), -tri.normal())
@@ -249,6 +249,6 @@ fn tiny_triangles_behind_the_origin_are_not_hit_and_tiny_hits_keep_their_t() {
         let toward = Ray3::new(Vec3::new(5.0, 0.0, 0.0) * s, -Vec3::X * s).expect("ray");
         assert_eq!(tri.ray_hit(&toward), Some(5.0), "scale {s}");
         let p = Vec3::new(3.0, 0.0, 0.0) * s;
-        assert_eq!(tri.closest_point(p), Vec3::ZERO, "scale {s}");
+        assert_eq!(tri.project_point(p), Vec3::ZERO, "scale {s}");
     }
 }

@@ -165,7 +165,7 @@ fn check_queries<V: Vector>(seed: u64) {
         // Closest point: on the boundary (or the point itself) and never beaten by a sample of
         // boundary points.
         let p: V = random_vector(&mut rng, 6.0);
-        let q = s.closest_point(p).expect("non-empty");
+        let q = s.closest_point(p).expect("non-empty").point;
         let d = s.distance(p);
         assert!(((q - p).length() - d).abs() <= 1e-4);
         for _ in 0..400 {
@@ -192,7 +192,7 @@ fn check_queries<V: Vector>(seed: u64) {
                     || m.distance(t.center + dir * t.radius) < 1e-5
             );
         }
-        let witness = t.closest_point(s.center).expect("non-empty");
+        let witness = t.closest_point(s.center).expect("non-empty").point;
         let gap = (s.center - t.center).length() - s.radius - t.radius;
         if gap.abs() > 1e-4 {
             assert_eq!(s.overlaps(&t), s.contains(witness), "{s:?} {t:?}");

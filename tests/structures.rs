@@ -74,6 +74,8 @@ struct ForgetsOne<P: bvhlab::Primitive> {
     inner: BruteForce<P>,
 }
 
+bvhlab::queries_by_observed_walks!(ForgetsOne);
+
 impl<P: bvhlab::Primitive> SpatialIndex for ForgetsOne<P> {
     type Prim = P;
     fn build(prims: &[P]) -> Self {

@@ -7,6 +7,7 @@
 //! rewording other lines does not matter. The slides' recursions are not in the core on this
 //! branch: a small recursive simulator over a real BVH's outline emits their events.
 
+use bvhlab::PointQuery;
 use std::collections::HashSet;
 
 use bvhlab::glam::Vec2;
@@ -196,7 +197,7 @@ fn build_events(prims: &[Segment2], settings: &BuildSettings) -> Vec<Event<Vec2>
     let leaf_size = settings.leaf_size.max(1);
     let bvh = BvhOptions {
         method: settings.bvh_split,
-        max_leaf_size: leaf_size,
+        leaf_size: leaf_size,
         sphere_fit: settings.sphere_fit,
         ..BvhOptions::default()
     };
@@ -217,7 +218,7 @@ fn build_events(prims: &[Segment2], settings: &BuildSettings) -> Vec<Event<Vec2>
                 resolution: (n > 0).then_some([n, n, 1]),
                 ..GridOptions::default()
             };
-            Grid2::build_observed(prims, options, &mut rec);
+            Grid2::build_observed(prims, &options, &mut rec);
         }
         StructureKind::Bsp => {
             let options = BspOptions {
@@ -228,10 +229,10 @@ fn build_events(prims: &[Segment2], settings: &BuildSettings) -> Vec<Event<Vec2>
         }
         StructureKind::Quadtree => {
             let options = OrthtreeOptions {
-                max_leaf_size: leaf_size,
+                leaf_size: leaf_size,
                 max_depth: settings.quadtree_depth,
             };
-            Quadtree2::build_observed(prims, options, &mut rec);
+            Quadtree2::build_observed(prims, &options, &mut rec);
         }
         StructureKind::KdTree => {
             let options = match settings.kd_split {
@@ -534,7 +535,7 @@ impl Slides<'_> {
         }
         self.events.push(Event::EnterNode { node, depth });
         for &prim in &outline.primitives {
-            let d = (self.prims[prim as usize].closest_point(point) - point).length();
+            let d = (self.prims[prim as usize].project_point(point) - point).length();
             self.events.push(Event::PrimitiveTest {
                 prim,
                 result: PrimitiveResult::Distance(d),

@@ -3,6 +3,7 @@
 
 mod common;
 
+use bvhlab::RayCast;
 use bvhlab::Triangle3;
 use bvhlab::glam::Vec2;
 use bvhlab::{BruteForce, SpatialIndex};

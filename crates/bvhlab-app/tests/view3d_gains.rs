@@ -4,6 +4,7 @@
 
 mod common;
 
+use bvhlab::RayCast;
 use bvhlab::glam::{Vec2, Vec3};
 use bvhlab::{BruteForce, NodeId, NodeOutline, Ray3, SpatialIndex, Triangle3};
 use bvhlab_app::LabApp;

@@ -6,6 +6,7 @@
 //!
 //! Run: `cargo bench -p bvhlab-bench --bench queries`.
 
+use bvhlab::{PointQuery, RayCast};
 use std::hint::black_box;
 
 use bvhlab::{AabbTree3, Ray3, SpatialIndex};

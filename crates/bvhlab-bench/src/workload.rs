@@ -24,6 +24,7 @@
 //! The primary hits that the secondary rays start from are found with bvhlab's AABB tree; its
 //! answers are exact (equal to brute force), so the rays do not depend on how fast it is.
 
+use bvhlab::RayCast;
 use bvhlab::glam::Vec3;
 use bvhlab::{AabbTree3, Mesh, Ray3, SpatialIndex, Triangle3};
 
@@ -382,6 +383,7 @@ fn cosine_direction(n: Vec3, rng: &mut SplitMix64) -> Vec3 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use bvhlab::PointQuery;
 
     #[test]
     fn displaced_sphere_has_about_the_asked_size_and_no_degenerate_triangle() {

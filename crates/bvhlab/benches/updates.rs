@@ -72,8 +72,7 @@ fn updates(c: &mut Criterion) {
             BatchSize::LargeInput,
         );
     });
-    let median =
-        AabbTree3::with_options(&tris, &BvhOptions::with_method(SplitMethod::SpatialMedian));
+    let median = AabbTree3::build_with(&tris, &BvhOptions::with_method(SplitMethod::SpatialMedian));
     group.bench_function("AABB tree: 5 reinsertion passes on a median tree", |b| {
         b.iter_batched(
             || median.clone(),

@@ -64,6 +64,7 @@ pub mod error;
 pub mod math;
 pub mod mesh;
 pub mod primitive;
+pub mod queries;
 pub mod ray;
 pub mod structure;
 pub mod vector;
@@ -72,6 +73,7 @@ pub mod volume;
 pub use error::GeometryError;
 pub use mesh::{Mesh, MeshError, MeshStats};
 pub use primitive::{Primitive, Segment2, Triangle3};
+pub use queries::{PointQuery, RayCast};
 pub use ray::Ray;
 pub use structure::bvh::Bvh4;
 pub use structure::{
@@ -146,6 +148,7 @@ pub type Octree3 = Orthtree<Triangle3>;
 /// fastest tree for many first-hit and closest-point queries.
 pub mod prelude {
     pub use crate::primitive::Primitive;
+    pub use crate::queries::{PointQuery, RayCast};
     pub use crate::structure::bvh::Bvh4;
     pub use crate::structure::{Outline, SpatialIndex};
     pub use crate::vector::Vector;

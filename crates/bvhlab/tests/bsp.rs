@@ -76,7 +76,7 @@ fn plane_rays<P: Primitive>(tree: &BspTree<P>, seed: u64, n: usize) -> Vec<(Ray<
 fn check_scene<P: Sample>(label: &str, prims: &[P], seed: u64) {
     for (name, options) in all_options() {
         let label = format!("{label}, {name}");
-        let tree = BspTree::with_options(prims, &options);
+        let tree = BspTree::build_with(prims, &options);
         tree.validate().unwrap_or_else(|e| panic!("{label}: {e}"));
         let mut q = queries(&mut rng(seed), prims, 60);
         q.rays.extend(plane_rays(&tree, seed, 30));
@@ -84,7 +84,7 @@ fn check_scene<P: Sample>(label: &str, prims: &[P], seed: u64) {
         check_events(&label, &tree, &q);
         let shift: P::Point = random_vector(&mut rng(seed), 0.5);
         let moved: Vec<P> = prims.iter().map(|p| p.map(|v| v + shift)).collect();
-        check_collide(&label, &tree, &BspTree::with_options(&moved, &options));
+        check_collide(&label, &tree, &BspTree::build_with(&moved, &options));
         assert_eq!(tree.stats().nodes, tree.nodes().len(), "{label}");
     }
 }
@@ -267,7 +267,7 @@ fn builds_are_deterministic_and_reported() {
         stats.nodes - stats.leaves
     );
     assert!(stats.references >= prims.len() && stats.sah_cost.is_some());
-    let other = BspTree::with_options(
+    let other = BspTree::build_with(
         &prims,
         &BspOptions {
             seed: 99,

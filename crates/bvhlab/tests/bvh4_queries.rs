@@ -48,9 +48,11 @@ fn check_scene<P: TestPrim>(
     rng: &mut ChaCha8Rng,
     budget: Budget,
 ) -> Seen {
-    let (binary, log) = Bvh::<Aabb<P::Point>, P>::build_observed(prims, options, &mut ());
+    let mut split_log = bvhlab::Recorder::default();
+    let binary = Bvh::<Aabb<P::Point>, P>::build_observed(prims, options, &mut split_log);
+    let log = split_log.splits;
     let collapsed = Bvh4::from_bvh(&binary);
-    let direct = Bvh4::with_options(prims, options);
+    let direct = Bvh4::build_with(prims, options);
     collapsed
         .validate()
         .unwrap_or_else(|e| panic!("{name}: {e}"));
@@ -204,7 +206,7 @@ fn check_point<P: Primitive>(
 
 fn option_sets() -> [(&'static str, BvhOptions); 3] {
     let big_leaves = BvhOptions {
-        max_leaf_size: 16,
+        leaf_size: 16,
         ..BvhOptions::default()
     };
     [

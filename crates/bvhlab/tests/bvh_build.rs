@@ -44,7 +44,7 @@ fn half_area(b: &Aabb3) -> f64 {
 /// parent, depth and size, then at once its `BuildSplit` (sizes adding up) or `BuildLeaf`.
 fn check_build_events<B: NodeVolume<Point = Vec3>>(prims: &[Triangle3], options: &BvhOptions) {
     let mut recorder = Recorder::default();
-    let (bvh, _) = Bvh::<B, Triangle3>::build_observed(prims, options, &mut recorder);
+    let bvh = Bvh::<B, Triangle3>::build_observed(prims, options, &mut recorder);
     let mut parents = vec![None; bvh.nodes().len()];
     let mut depths = vec![0u32; bvh.nodes().len()];
     for i in 0..bvh.nodes().len() {
@@ -126,7 +126,8 @@ fn sah_records_are_the_heuristic() {
         ..BvhOptions::default()
     };
     let mut recorder = Recorder::default();
-    let (bvh, log) = AabbTree::<Triangle3>::build_observed(&prims, &options, &mut recorder);
+    let bvh = AabbTree::<Triangle3>::build_observed(&prims, &options, &mut recorder);
+    let log = recorder.splits.clone();
     let split_costs: Vec<(NodeId, Option<f32>)> = recorder
         .events
         .iter()
@@ -193,7 +194,9 @@ fn sah_records_are_the_heuristic() {
 fn coinciding_centres_fall_back_to_the_median() {
     let t = Triangle3::new(Vec3::ZERO, Vec3::X, Vec3::Y);
     let prims = vec![t; 37];
-    let (bvh, log) = AabbTree::<Triangle3>::build_observed(&prims, &BvhOptions::default(), &mut ());
+    let mut split_log = Recorder::default();
+    let bvh = AabbTree::<Triangle3>::build_observed(&prims, &BvhOptions::default(), &mut split_log);
+    let log = split_log.splits;
     bvh.validate().expect("well formed");
     assert!(!log.is_empty());
     assert!(log.iter().all(|r| r.method == SplitMethod::ObjectMedian));
@@ -207,10 +210,10 @@ fn options_shape_the_tree() {
     for leaf in [1, 3, 8] {
         for method in [SplitMethod::SpatialMedian, SplitMethod::ObjectMedian] {
             let options = BvhOptions {
-                max_leaf_size: leaf,
+                leaf_size: leaf,
                 ..BvhOptions::with_method(method)
             };
-            let bvh = AabbTree::<Segment2>::with_options(&prims, &options);
+            let bvh = AabbTree::<Segment2>::build_with(&prims, &options);
             let stats = bvh.stats();
             assert!(stats.leaf_sizes.len() <= leaf + 1, "{method:?} {stats:?}");
             if method == SplitMethod::ObjectMedian {
@@ -225,11 +228,11 @@ fn options_shape_the_tree() {
             max_depth,
             ..BvhOptions::default()
         };
-        let bvh = SphereTree::<Segment2>::with_options(&prims, &options);
+        let bvh = SphereTree::<Segment2>::build_with(&prims, &options);
         bvh.validate().expect("well formed");
         assert!(bvh.stats().max_depth <= max_depth.min(MAX_DEPTH));
     }
-    let one = AabbTree::<Segment2>::with_options(
+    let one = AabbTree::<Segment2>::build_with(
         &prims,
         &BvhOptions {
             max_depth: 0,
@@ -248,10 +251,10 @@ fn exponential_spacing_stays_within_the_depth_limit() {
         .map(|i| Vec2::new(2.0f32.powi(-(i % 120)), 0.0))
         .collect();
     let options = BvhOptions {
-        max_leaf_size: 1,
+        leaf_size: 1,
         ..BvhOptions::with_method(SplitMethod::SpatialMedian)
     };
-    let bvh = AabbTree::<Vec2>::with_options(&prims, &options);
+    let bvh = AabbTree::<Vec2>::build_with(&prims, &options);
     bvh.validate().expect("well formed");
     assert_eq!(bvh.stats().max_depth, MAX_DEPTH, "the limit is reached");
     let brute = bvhlab::BruteForce::build(&prims);
@@ -309,7 +312,7 @@ fn sah_beats_the_spatial_median_on_clusters() {
         *t = Triangle3::new(t.a * 0.2 + shift, t.b * 0.2 + shift, t.c * 0.2 + shift);
     }
     let cost = |method| {
-        AabbTree::<Triangle3>::with_options(&prims, &BvhOptions::with_method(method))
+        AabbTree::<Triangle3>::build_with(&prims, &BvhOptions::with_method(method))
             .stats()
             .sah_cost
             .expect("a cost")

@@ -1,5 +1,5 @@
 //! The build in slices ([`BvhBuild`]): whatever the budget of each step, the tree is the one
-//! [`Bvh::with_options`] builds, bit for bit (nodes, volumes, leaf order), for every node
+//! [`Bvh::build_with`] builds, bit for bit (nodes, volumes, leaf order), for every node
 //! volume, split method and degenerate scene; and its progress only moves forward and ends
 //! exactly at its total.
 //!
@@ -136,7 +136,7 @@ fn option_grid() -> Vec<BvhOptions> {
         SplitMethod::ObjectMedian,
         SplitMethod::BinnedSah,
     ] {
-        for (max_leaf_size, max_depth, bins, sphere_fit) in [
+        for (leaf_size, max_depth, bins, sphere_fit) in [
             (1, 64, 12, SphereFit::Ritter),
             (4, 64, 2, SphereFit::Ritter),
             (4, 2, 12, SphereFit::Ritter),
@@ -144,7 +144,7 @@ fn option_grid() -> Vec<BvhOptions> {
         ] {
             grid.push(BvhOptions {
                 method,
-                max_leaf_size,
+                leaf_size,
                 max_depth,
                 bins,
                 sphere_fit,
@@ -182,7 +182,7 @@ where
 {
     for (name, prims) in scenes::<P>(seed) {
         for options in option_grid() {
-            let whole = Bvh::<B, P>::with_options(&prims, &options);
+            let whole = Bvh::<B, P>::build_with(&prims, &options);
             for budget in BUDGETS {
                 let (sliced, _) = build_in_steps::<B, P>(&prims, &options, budget);
                 let context = format!("{} tree, {name}, {options:?}, budget {budget}", B::NAME);
@@ -222,9 +222,9 @@ fn a_deep_tree_built_in_odd_steps_equals_the_one_shot_build() {
         let options = BvhOptions::with_method(method);
         for budget in [13, 997] {
             let (a, _) = build_in_steps::<Obb<Vec3>, _>(&prims, &options, budget);
-            assert_same_tree(&a, &Bvh::with_options(&prims, &options), "OBB");
+            assert_same_tree(&a, &Bvh::build_with(&prims, &options), "OBB");
             let (s, _) = build_in_steps::<Sphere<Vec3>, _>(&prims, &options, budget);
-            assert_same_tree(&s, &Bvh::with_options(&prims, &options), "sphere");
+            assert_same_tree(&s, &Bvh::build_with(&prims, &options), "sphere");
         }
     }
 }
@@ -239,7 +239,7 @@ fn an_empty_build_is_done_from_the_start() {
         (0, 0, 1.0)
     );
     let tree = build.finish();
-    assert_eq!(tree, Bvh::with_options(&[], &BvhOptions::default()));
+    assert_eq!(tree, Bvh::build_with(&[], &BvhOptions::default()));
     assert!(tree.root().is_none());
 }
 
@@ -256,7 +256,7 @@ fn steps_spend_their_budget_on_primitives() {
     assert!(!build.is_done());
     assert_same_tree(
         &build.finish(),
-        &Bvh::with_options(&prims, &BvhOptions::default()),
+        &Bvh::build_with(&prims, &BvhOptions::default()),
         "finished early",
     );
 }
@@ -321,29 +321,27 @@ fn options() -> impl Strategy<Value = BvhOptions> {
         2usize..20,
         prop::bool::ANY,
     )
-        .prop_map(
-            |(method, max_leaf_size, max_depth, bins, welzl)| BvhOptions {
-                method,
-                max_leaf_size,
-                max_depth,
-                bins,
-                sphere_fit: if welzl {
-                    SphereFit::Welzl
-                } else {
-                    SphereFit::Ritter
-                },
+        .prop_map(|(method, leaf_size, max_depth, bins, welzl)| BvhOptions {
+            method,
+            leaf_size,
+            max_depth,
+            bins,
+            sphere_fit: if welzl {
+                SphereFit::Welzl
+            } else {
+                SphereFit::Ritter
             },
-        )
+        })
 }
 
 fn check_all_volumes<P: Primitive>(prims: &[P], options: &BvhOptions, budget: usize) {
     let context = format!("{options:?}, budget {budget}");
     let (a, _) = build_in_steps::<Aabb<P::Point>, P>(prims, options, budget);
-    assert_same_tree(&a, &Bvh::with_options(prims, options), &context);
+    assert_same_tree(&a, &Bvh::build_with(prims, options), &context);
     let (s, _) = build_in_steps::<Sphere<P::Point>, P>(prims, options, budget);
-    assert_same_tree(&s, &Bvh::with_options(prims, options), &context);
+    assert_same_tree(&s, &Bvh::build_with(prims, options), &context);
     let (o, _) = build_in_steps::<Obb<P::Point>, P>(prims, options, budget);
-    assert_same_tree(&o, &Bvh::with_options(prims, options), &context);
+    assert_same_tree(&o, &Bvh::build_with(prims, options), &context);
 }
 
 proptest! {
@@ -441,7 +439,7 @@ fn measure<B: NodeVolume<Point = Vec3> + VolumeBits>(
     let mut runs_in_steps = Vec::new();
     for _ in 0..runs {
         let start = Instant::now();
-        let whole = Bvh::<B, Triangle3>::with_options(prims, &options);
+        let whole = Bvh::<B, Triangle3>::build_with(prims, &options);
         one_shot.push(start.elapsed());
         let (times, tree) = timed_steps::<B>(prims, &options, budget);
         assert_same_tree(&tree, &whole, "a million triangles");

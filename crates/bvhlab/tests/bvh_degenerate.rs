@@ -170,14 +170,12 @@ fn coordinates_near_f32_max_build() {
         SplitMethod::SpatialMedian,
         SplitMethod::ObjectMedian,
     ] {
-        let bvh =
-            Bvh::<Aabb<Vec2>, Segment2>::with_options(&prims, &BvhOptions::with_method(method));
+        let bvh = Bvh::<Aabb<Vec2>, Segment2>::build_with(&prims, &BvhOptions::with_method(method));
         bvh.validate().expect("well formed");
-        let obb =
-            Bvh::<Obb<Vec2>, Segment2>::with_options(&prims, &BvhOptions::with_method(method));
+        let obb = Bvh::<Obb<Vec2>, Segment2>::build_with(&prims, &BvhOptions::with_method(method));
         obb.validate().expect("well formed");
         let sphere =
-            Bvh::<Sphere<Vec2>, Segment2>::with_options(&prims, &BvhOptions::with_method(method));
+            Bvh::<Sphere<Vec2>, Segment2>::build_with(&prims, &BvhOptions::with_method(method));
         sphere.validate().expect("well formed");
         let _ = sphere.closest_point(Vec2::ZERO);
     }

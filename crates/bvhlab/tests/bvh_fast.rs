@@ -141,8 +141,10 @@ fn random_scenes_at_every_scale() {
         for method in [SplitMethod::BinnedSah, SplitMethod::SpatialMedian] {
             let name = format!("scale {scale}, {method:?}");
             let options = BvhOptions::with_method(method);
-            let tree = AabbTree3::with_options(&tris, &options);
-            let (observed, log) = AabbTree3::build_observed(&tris, &options, &mut ());
+            let tree = AabbTree3::build_with(&tris, &options);
+            let mut split_log = bvhlab::Recorder::default();
+            let observed = AabbTree3::build_observed(&tris, &options, &mut split_log);
+            let log = split_log.splits;
             assert_eq!(tree, observed, "{name}: the unlogged build differs");
             let mut rays = box_rays(&mut rng, &tris, 600);
             rays.extend(rays_for(&mut rng, &tris, &log, 600));
@@ -162,7 +164,9 @@ fn real_meshes() {
         };
         let mut rng = rng(seed);
         let tree = AabbTree3::build(&tris);
-        let (observed, log) = AabbTree3::build_observed(&tris, &BvhOptions::default(), &mut ());
+        let mut split_log = bvhlab::Recorder::default();
+        let observed = AabbTree3::build_observed(&tris, &BvhOptions::default(), &mut split_log);
+        let log = split_log.splits;
         assert_eq!(tree, observed, "{name}: the unlogged build differs");
         let mut rays = box_rays(&mut rng, &tris, 4000);
         rays.extend(rays_for(&mut rng, &tris, &log, 2000));
@@ -268,7 +272,7 @@ fn wide_tree_in_2d() {
 fn wide_stacks_of_every_depth() {
     let mut rng = rng(11);
     let options = BvhOptions {
-        max_leaf_size: 1,
+        leaf_size: 1,
         ..BvhOptions::with_method(SplitMethod::SpatialMedian)
     };
     let mut depths = Vec::new();
@@ -283,7 +287,7 @@ fn wide_stacks_of_every_depth() {
                 )
             })
             .collect();
-        let tree = AabbTree3::with_options(&tris, &options);
+        let tree = AabbTree3::build_with(&tris, &options);
         let wide = Bvh4::from_bvh(&tree);
         depths.push(wide.depth());
         // Down onto each triangle, from above and from the side, and through the box.

@@ -1,4 +1,4 @@
-//! The one-go box-tree build (`build/fast.rs`, what [`Bvh::with_options`] runs for a
+//! The one-go box-tree build (`build/fast.rs`, what [`Bvh::build_with`] runs for a
 //! binned-SAH AABB tree) against the resumable builder the lab steps through ([`BvhBuild`]
 //! and [`Bvh::build_observed`]): the same tree, bit for bit (every node's box, children and
 //! leaf range, and the leaf order), on every shared mesh and on seeded scenes built to hit
@@ -40,13 +40,13 @@ fn tree_bits<P: Primitive>(tree: &AabbTree<P>) -> (Vec<Vec<u32>>, Vec<u32>) {
 /// Builds `prims` with `options` three ways (one go, in slices, observed) and asserts one
 /// tree.
 fn assert_same_tree<P: Primitive>(name: &str, prims: &[P], options: &BvhOptions) {
-    let fast = Bvh::<Aabb<P::Point>, P>::with_options(prims, options);
+    let fast = Bvh::<Aabb<P::Point>, P>::build_with(prims, options);
     let mut build = BvhBuild::<Aabb<P::Point>, P>::new(prims.to_vec(), *options);
     while !build.is_done() {
         build.step(997);
     }
     let stepped = build.finish();
-    let (observed, _) = Bvh::<Aabb<P::Point>, P>::build_observed(prims, options, &mut ());
+    let observed = Bvh::<Aabb<P::Point>, P>::build_observed(prims, options, &mut ());
     let bits = tree_bits(&fast);
     assert_eq!(
         bits,
@@ -69,9 +69,9 @@ fn option_sets() -> Vec<BvhOptions> {
     for bins in [2, 3, 7, 32, 64, 1000] {
         sets.push(BvhOptions { bins, ..default });
     }
-    for max_leaf_size in [1, 2, 8, 64] {
+    for leaf_size in [1, 2, 8, 64] {
         sets.push(BvhOptions {
-            max_leaf_size,
+            leaf_size,
             ..default
         });
     }
@@ -135,7 +135,7 @@ fn pairs_and_coincident_centres_give_the_same_tree() {
     let mut r = rng(72);
     // Many nodes of two: a leaf size of 1 splits every pair the SAH allows.
     let options = BvhOptions {
-        max_leaf_size: 1,
+        leaf_size: 1,
         ..BvhOptions::default()
     };
     for n in [2, 3, 4, 5, 17, 64] {
@@ -161,7 +161,7 @@ fn pairs_and_coincident_centres_give_the_same_tree() {
     assert_same_tree("with NaN", &tris, &BvhOptions::default());
 }
 
-/// `Bvh4::with_options` (built without keeping the binary tree) is the collapse of the
+/// `Bvh4::build_with` (built without keeping the binary tree) is the collapse of the
 /// binary tree built with the same options, for every option set and split method.
 #[test]
 fn a_wide_tree_built_directly_is_the_collapsed_binary_tree() {
@@ -174,8 +174,8 @@ fn a_wide_tree_built_directly_is_the_collapsed_binary_tree() {
     }
     for (name, tris) in &scenes {
         for options in &sets {
-            let direct = Bvh4::with_options(tris, options);
-            let collapsed = Bvh4::from_bvh(&AabbTree::with_options(tris, options));
+            let direct = Bvh4::build_with(tris, options);
+            let collapsed = Bvh4::from_bvh(&AabbTree::build_with(tris, options));
             assert!(direct == collapsed, "{name}, {options:?}");
         }
         assert!(

@@ -39,10 +39,10 @@ where
         SplitMethod::ObjectMedian,
     ] {
         let options = BvhOptions {
-            max_leaf_size: 2,
+            leaf_size: 2,
             ..BvhOptions::with_method(method)
         };
-        let bvh = Bvh::<B, P>::with_options(prims, &options);
+        let bvh = Bvh::<B, P>::build_with(prims, &options);
         if let Err(e) = bvh.validate() {
             panic!("{} tree, {method:?}: {e}", B::NAME);
         }

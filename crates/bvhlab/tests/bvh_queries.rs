@@ -58,7 +58,7 @@ macro_rules! volume_tests {
             fn median_builders() {
                 for method in [SplitMethod::SpatialMedian, SplitMethod::ObjectMedian] {
                     let options = BvhOptions {
-                        max_leaf_size: 2,
+                        leaf_size: 2,
                         ..BvhOptions::with_method(method)
                     };
                     run::<$volume<Vec2>, Segment2>(15, &options);
@@ -68,13 +68,13 @@ macro_rules! volume_tests {
             #[test]
             fn one_primitive_per_leaf_and_few_bins() {
                 let options = BvhOptions {
-                    max_leaf_size: 1,
+                    leaf_size: 1,
                     bins: 2,
                     ..BvhOptions::default()
                 };
                 run::<$volume<Vec3>, Triangle3>(17, &options);
                 let options = BvhOptions {
-                    max_leaf_size: 16,
+                    leaf_size: 16,
                     bins: 64,
                     ..BvhOptions::default()
                 };

@@ -144,10 +144,10 @@ fn check_moves<P: TestPrim>(name: &str, prims: &[P], steps: &[(&str, Vec<P>)], s
     let mut rng = rng(seed);
     for method in [SplitMethod::BinnedSah, SplitMethod::SpatialMedian] {
         let options = BvhOptions::with_method(method);
-        let mut aabb = Bvh::<Aabb<P::Point>, P>::with_options(prims, &options);
-        let mut sphere = Bvh::<Sphere<P::Point>, P>::with_options(prims, &options);
-        let mut obb = Bvh::<Obb<P::Point>, P>::with_options(prims, &options);
-        let mut wide = Bvh4::with_options(prims, &options);
+        let mut aabb = Bvh::<Aabb<P::Point>, P>::build_with(prims, &options);
+        let mut sphere = Bvh::<Sphere<P::Point>, P>::build_with(prims, &options);
+        let mut obb = Bvh::<Obb<P::Point>, P>::build_with(prims, &options);
+        let mut wide = Bvh4::build_with(prims, &options);
         assert!(
             !aabb.needs_rebuild(1.0) && !wide.needs_rebuild(1.0),
             "{name}: fresh trees"

@@ -34,7 +34,7 @@ impl<P: TestPrim> Mirror<P> {
         Self {
             name: format!("{name}, {options:?}"),
             max_depth: options.max_depth,
-            tree: Tree::<P>::with_options(&prims, options),
+            tree: Tree::<P>::build_with(&prims, options),
             prims,
             steps: 0,
             rays_hit: 0,
@@ -196,17 +196,17 @@ fn option_sets() -> Vec<BvhOptions> {
     vec![
         BvhOptions::default(),
         BvhOptions {
-            max_leaf_size: 1,
+            leaf_size: 1,
             ..median
         },
         BvhOptions {
-            max_leaf_size: 8,
+            leaf_size: 8,
             ..BvhOptions::default()
         },
         // Shallow: inserts must keep within two levels and grow leaves instead.
         BvhOptions {
             max_depth: 2,
-            max_leaf_size: 2,
+            leaf_size: 2,
             ..BvhOptions::default()
         },
     ]
@@ -290,10 +290,8 @@ fn inserting_one_by_one_makes_a_tree_close_to_a_build() {
     tree.validate().expect("valid");
     let inserted = tree.sah_cost().expect("a cost");
     let built = Tree::<Triangle3>::build(&prims).sah_cost().expect("a cost");
-    let median = Tree::<Triangle3>::with_options(
-        &prims,
-        &BvhOptions::with_method(SplitMethod::SpatialMedian),
-    );
+    let median =
+        Tree::<Triangle3>::build_with(&prims, &BvhOptions::with_method(SplitMethod::SpatialMedian));
     assert!(
         inserted < 1.2 * built,
         "inserted one by one: {inserted}, built: {built}, median {:?}",
@@ -310,12 +308,12 @@ fn sorted_inserts_keep_the_tree_within_its_depth_limit_and_close_to_a_build() {
     for options in [
         BvhOptions::default(),
         BvhOptions {
-            max_leaf_size: 1,
+            leaf_size: 1,
             max_depth: 6,
             ..BvhOptions::default()
         },
     ] {
-        let mut tree = Tree::<Vec2>::with_options(&[], &options);
+        let mut tree = Tree::<Vec2>::build_with(&[], &options);
         let prims: Vec<Vec2> = (0..3000).map(|i| Vec2::new(i as f32, 0.0)).collect();
         for p in &prims {
             tree.insert(*p);
@@ -330,7 +328,7 @@ fn sorted_inserts_keep_the_tree_within_its_depth_limit_and_close_to_a_build() {
         // Within a depth of 6 the leaves must take what no new leaf can, and the last
         // leaves grow large: that is within the limit, not close to a build.
         if options == BvhOptions::default() {
-            let built = Tree::<Vec2>::with_options(&prims, &options);
+            let built = Tree::<Vec2>::build_with(&prims, &options);
             let (cost, built_cost) = (tree.sah_cost(), built.sah_cost());
             assert!(
                 cost.expect("a cost") < 1.2 * built_cost.expect("a cost"),
@@ -372,7 +370,7 @@ fn check_optimization<P: TestPrim>(
 ) {
     let name = format!("{name}, {options:?}");
     let mut rng = rng(seed);
-    let mut tree = Tree::<P>::with_options(prims, options);
+    let mut tree = Tree::<P>::build_with(prims, options);
     let before = tree.sah_cost().expect("a cost");
     let report = tree.optimize_by_reinsertion(30);
     tree.validate().unwrap_or_else(|e| panic!("{name}: {e}"));
@@ -408,7 +406,7 @@ fn reinsertion_lowers_the_sah_cost_and_never_raises_it() {
     // leaves themselves are kept whole, so less moves. Every tree: never worse.
     for method in [SplitMethod::SpatialMedian, SplitMethod::ObjectMedian] {
         let single = BvhOptions {
-            max_leaf_size: 1,
+            leaf_size: 1,
             ..BvhOptions::with_method(method)
         };
         check_optimization("segments", &segments, &single, Some(0.03), 801);

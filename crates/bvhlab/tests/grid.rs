@@ -4,6 +4,7 @@
 
 mod grid_support;
 
+use bvhlab::RayCast;
 use bvhlab::glam::{Vec2, Vec3};
 use bvhlab::structure::grid::{Grid, GridOptions};
 use bvhlab::structure::{PrimitiveResult, PruneReason, Recorder};
@@ -51,7 +52,7 @@ fn conformance<P: Map>(seed: u64) {
     let other = Grid::build(&scenes[3].1);
     for (name, prims) in &scenes {
         for (label, options) in options() {
-            let grid = Grid::with_options(prims, options);
+            let grid = Grid::build_with(prims, &options);
             let corners = corners(&grid, &mut rng, 10);
             let rays = rays_for(&mut rng, prims, &corners, 40);
             let points = points_for(&mut rng, prims, &corners, 10);
@@ -89,7 +90,7 @@ fn unit_grid(mut segments: Vec<Segment2>) -> (Grid<Segment2>, Vec<Segment2>) {
         resolution: Some([10, 10, 1]),
         ..GridOptions::default()
     };
-    (Grid::with_options(&segments, options), segments)
+    (Grid::build_with(&segments, &options), segments)
 }
 
 #[test]
@@ -298,9 +299,9 @@ fn resolution_follows_the_options() {
         (1000..=6000).contains(&cells),
         "about 3 cells per triangle: {cells}"
     );
-    let capped = Grid::with_options(
+    let capped = Grid::build_with(
         &prims,
-        GridOptions {
+        &GridOptions {
             max_cells: 100,
             ..GridOptions::default()
         },
@@ -310,9 +311,9 @@ fn resolution_follows_the_options() {
         "{:?}",
         capped.resolution()
     );
-    let fixed = Grid::with_options(
+    let fixed = Grid::build_with(
         &prims,
-        GridOptions {
+        &GridOptions {
             resolution: Some([4, 5, 6]),
             ..GridOptions::default()
         },
@@ -386,9 +387,9 @@ fn a_ray_from_far_away_visits_every_cell_to_the_far_corner() {
     let want = brute.ray_first_hit(&ray, f32::INFINITY);
     assert_eq!(want.map(|h| h.prim), Some(0), "the ray is aimed at point 0");
     for n in [2, 7, 30] {
-        let grid = Grid::with_options(
+        let grid = Grid::build_with(
             &points,
-            GridOptions {
+            &GridOptions {
                 resolution: Some([n, n, 1]),
                 ..GridOptions::default()
             },
@@ -421,9 +422,9 @@ fn a_ray_with_a_tiny_component_along_a_flat_grid_walks_all_of_it() {
     let want = brute.ray_all_hits(&ray, f32::INFINITY);
     assert_eq!(want.len(), 2, "brute force hits both points: {want:?}");
     for resolution in [None, Some([6, 1, 1]), Some([6, 3, 1])] {
-        let grid = Grid::with_options(
+        let grid = Grid::build_with(
             &points,
-            GridOptions {
+            &GridOptions {
                 resolution,
                 ..GridOptions::default()
             },

@@ -49,16 +49,16 @@ fn vec3() -> impl Strategy<Value = Vec3> {
 fn exercise<P: Primitive>(prims: &[P], rays: &[(P::Point, P::Point)], points: &[P::Point]) {
     let grids = [
         Grid::build(prims),
-        Grid::with_options(
+        Grid::build_with(
             prims,
-            GridOptions {
+            &GridOptions {
                 resolution: Some([3, 1, 2]),
                 ..GridOptions::default()
             },
         ),
-        Grid::with_options(
+        Grid::build_with(
             prims,
-            GridOptions {
+            &GridOptions {
                 density: 1e6,
                 max_cells: 600,
                 ..GridOptions::default()
@@ -67,10 +67,10 @@ fn exercise<P: Primitive>(prims: &[P], rays: &[(P::Point, P::Point)], points: &[
     ];
     let trees = [
         Orthtree::build(prims),
-        Orthtree::with_options(
+        Orthtree::build_with(
             prims,
-            OrthtreeOptions {
-                max_leaf_size: 1,
+            &OrthtreeOptions {
+                leaf_size: 1,
                 max_depth: 12,
             },
         ),

@@ -63,7 +63,7 @@ fn split_plane_rays<P: Primitive>(
 fn check_scene<P: Sample>(label: &str, prims: &[P], seed: u64) {
     for (name, options) in all_options() {
         let label = format!("{label}, {name}");
-        let tree = KdTree::with_options(prims, &options);
+        let tree = KdTree::build_with(prims, &options);
         tree.validate().unwrap_or_else(|e| panic!("{label}: {e}"));
         let mut q = queries(&mut rng(seed), prims, 60);
         q.rays.extend(split_plane_rays(&tree, seed, 30));
@@ -72,7 +72,7 @@ fn check_scene<P: Sample>(label: &str, prims: &[P], seed: u64) {
         // Against a shifted copy of itself.
         let shift: P::Point = random_vector(&mut rng(seed), 0.5);
         let moved: Vec<P> = prims.iter().map(|p| p.map(|v| v + shift)).collect();
-        check_collide(&label, &tree, &KdTree::with_options(&moved, &options));
+        check_collide(&label, &tree, &KdTree::build_with(&moved, &options));
         let stats = tree.stats();
         assert!(stats.references >= prims.iter().filter(|p| p.bounds().min.is_finite()).count());
         assert_eq!(stats.nodes, tree.nodes().len(), "{label}");
@@ -122,7 +122,7 @@ fn real_meshes_match_brute_force() {
         };
         for (builder, options) in &all_options()[..2] {
             let label = format!("{name}, {builder}");
-            let tree = KdTree::with_options(&mesh, options);
+            let tree = KdTree::build_with(&mesh, options);
             tree.validate().unwrap_or_else(|e| panic!("{label}: {e}"));
             let mut q = queries(&mut rng(i as u64), &mesh, n);
             q.rays.extend(split_plane_rays(&tree, i as u64, n / 2));
@@ -163,7 +163,7 @@ fn empty_and_non_finite_input() {
     ];
     prims.extend(polygon(20, 2.0));
     for (name, options) in all_options() {
-        let tree = KdTree::with_options(&prims, &options);
+        let tree = KdTree::build_with(&prims, &options);
         tree.validate().unwrap_or_else(|e| panic!("{name}: {e}"));
         let ray = Ray::new(Vec2::new(-5.0, 0.0), Vec2::X).expect("a valid ray");
         let hits = tree.ray_all_hits(&ray, f32::INFINITY);
@@ -184,7 +184,7 @@ fn empty_and_non_finite_input() {
 fn identical_primitives_make_one_leaf() {
     let tri = Triangle3::new(Vec3::ZERO, Vec3::X, Vec3::Y);
     for (name, options) in all_options() {
-        let tree = KdTree::with_options(&[tri; 100], &options);
+        let tree = KdTree::build_with(&[tri; 100], &options);
         tree.validate().expect("valid");
         let stats = tree.stats();
         assert_eq!((stats.nodes, stats.references), (1, 100), "{name}");
@@ -204,7 +204,7 @@ fn straddlers_are_listed_on_both_sides_and_counted() {
         .collect();
     prims.push(Segment2::new(Vec2::ZERO, Vec2::splat(8.0)));
     for (name, options) in all_options() {
-        let tree = KdTree::with_options(&prims, &options);
+        let tree = KdTree::build_with(&prims, &options);
         tree.validate().expect("valid");
         let stats = tree.stats();
         assert!(stats.duplicated_references() > 0, "{name}: {stats:?}");
@@ -256,7 +256,7 @@ fn build_events_describe_the_tree() {
         assert!(stats.sah_cost.is_some_and(|c| c > 0.0), "{name}");
         assert_eq!(
             tree,
-            KdTree::with_options(&prims, &options),
+            KdTree::build_with(&prims, &options),
             "{name}: deterministic"
         );
     }
@@ -277,7 +277,7 @@ fn sah_beats_median_on_a_clustered_scene() {
         Vec3::splat(100.0) + Vec3::Y,
     ));
     let sah = KdTree::build(&prims).stats().sah_cost.expect("a cost");
-    let median = KdTree::with_options(&prims, &KdTreeOptions::median(AxisRule::LongestAxis))
+    let median = KdTree::build_with(&prims, &KdTreeOptions::median(AxisRule::LongestAxis))
         .stats()
         .sah_cost
         .expect("a cost");
@@ -313,7 +313,7 @@ proptest! {
         } else {
             KdTreeOptions::sah()
         };
-        let tree = KdTree::with_options(&tris, &options);
+        let tree = KdTree::build_with(&tris, &options);
         prop_assert!(tree.validate().is_ok());
         let (o, d) = (v(&query[0..3]), v(&query[3..6]));
         if let Ok(ray) = Ray::new(o, d) {
@@ -327,7 +327,7 @@ proptest! {
             .chunks_exact(4)
             .map(|c| Segment2::new(Vec2::new(c[0], c[1]), Vec2::new(c[2], c[3])))
             .collect();
-        let tree = KdTree::with_options(&segs, &options);
+        let tree = KdTree::build_with(&segs, &options);
         prop_assert!(tree.validate().is_ok());
         let _ = tree.k_nearest(o.truncate(), 3);
     }
@@ -359,7 +359,7 @@ fn a_hit_as_inexact_as_a_huge_primitive_is_found_across_a_plane() {
         KdTreeOptions::median(AxisRule::RoundRobin),
         KdTreeOptions::median(AxisRule::LongestAxis),
     ] {
-        let tree = KdTree::with_options(&segments, &options);
+        let tree = KdTree::build_with(&segments, &options);
         assert_eq!(tree.ray_first_hit(&ray, f32::INFINITY), want, "{options:?}");
         assert_eq!(
             tree.ray_all_hits(&ray, f32::INFINITY),

@@ -178,7 +178,7 @@ fn expect_min_distance<B, P>(
         return;
     }
     for &prim in bvh.leaf_primitives(node) {
-        let q = bvh.primitives()[prim as usize].closest_point(point);
+        let q = bvh.primitives()[prim as usize].project_point(point);
         let d = (q - point).length();
         events.expect(Event::PrimitiveTest {
             prim,
@@ -448,7 +448,9 @@ where
     P: Primitive,
 {
     let name = format!("{name} ({} tree, {:?})", B::NAME, options.method);
-    let (bvh, log) = Bvh::<B, P>::build_observed(prims, options, &mut ());
+    let mut split_log = Recorder::default();
+    let bvh = Bvh::<B, P>::build_observed(prims, options, &mut split_log);
+    let log = split_log.splits;
     let brute = BruteForce::build(prims);
     let mut tally = Tally::default();
     let mut all_rays = rays_for(rng, prims, &log, rays);
@@ -468,7 +470,7 @@ fn builds() -> [BvhOptions; 3] {
     [
         BvhOptions::with_method(SplitMethod::SpatialMedian),
         BvhOptions {
-            max_leaf_size: 2,
+            leaf_size: 2,
             ..BvhOptions::with_method(SplitMethod::ObjectMedian)
         },
         BvhOptions::default(),

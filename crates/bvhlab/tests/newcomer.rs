@@ -102,7 +102,7 @@ impl Primitive for Ball {
         }
         Some(t0.max(0.0) as f32)
     }
-    fn closest_point(&self, point: Vec3) -> Vec3 {
+    fn project_point(&self, point: Vec3) -> Vec3 {
         let offset = point.as_dvec3() - self.center.as_dvec3();
         let length = offset.length();
         if length <= f64::from(self.radius) {

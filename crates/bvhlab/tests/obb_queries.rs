@@ -161,7 +161,7 @@ fn brute_force_distance<V: Vector>(obb: &Obb<V>, p: V, n: usize) -> (f32, f32) {
 }
 
 fn check_closest<V: Vector>(obb: &Obb<V>, p: V, n: usize) {
-    let q = obb.closest_point(p).expect("a box is not empty");
+    let q = obb.closest_point(p).expect("a box is not empty").point;
     assert!(offset(obb, 1e-4).contains(q), "{q:?} outside {obb:?}");
     if obb.contains(p) {
         assert_eq!(q, p);

@@ -5,6 +5,7 @@
 
 mod grid_support;
 
+use bvhlab::RayCast;
 use bvhlab::glam::{Vec2, Vec3};
 use bvhlab::structure::quadtree::{Orthtree, OrthtreeOptions};
 use bvhlab::structure::{NodeId, PrimitiveResult, Recorder};
@@ -33,11 +34,11 @@ fn corners<P: Primitive>(tree: &Orthtree<P>, rng: &mut ChaCha8Rng, count: usize)
 
 fn options() -> [(&'static str, OrthtreeOptions); 3] {
     let deep = OrthtreeOptions {
-        max_leaf_size: 1,
+        leaf_size: 1,
         max_depth: 12,
     };
     let shallow = OrthtreeOptions {
-        max_leaf_size: 3,
+        leaf_size: 3,
         max_depth: 2,
     };
     [
@@ -53,7 +54,7 @@ fn conformance<P: Map>(seed: u64) {
     let other = Orthtree::build(&scenes[3].1);
     for (name, prims) in &scenes {
         for (label, options) in options() {
-            let tree = Orthtree::with_options(prims, options);
+            let tree = Orthtree::build_with(prims, &options);
             let corners = corners(&tree, &mut rng, 10);
             let rays = rays_for(&mut rng, prims, &corners, 40);
             let points = points_for(&mut rng, prims, &corners, 10);
@@ -196,10 +197,10 @@ fn a_hit_beyond_the_leaf_does_not_end_the_search() {
     segments.extend(
         (0..40).map(|k| Segment2::new(Vec2::splat(k as f32 * 0.25), Vec2::splat(k as f32 * 0.25))),
     );
-    let tree = Orthtree::with_options(
+    let tree = Orthtree::build_with(
         &segments,
-        OrthtreeOptions {
-            max_leaf_size: 2,
+        &OrthtreeOptions {
+            leaf_size: 2,
             max_depth: 6,
         },
     );

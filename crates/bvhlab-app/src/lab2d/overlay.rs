@@ -81,7 +81,7 @@ pub(super) fn draw_step(lab: &Lab2d, lane: &Lane<Segment2>, live: bool, wp: &mut
                 let (Some(p), Some(s)) = (q.point, lab.prims().segments.get(prim as usize)) else {
                     continue;
                 };
-                let c = s.closest_point(p);
+                let c = s.project_point(p);
                 wp.line(p, c, Stroke::new(1.5, colors::ANSWER));
                 wp.dot(c, 4.0, colors::ANSWER);
             }

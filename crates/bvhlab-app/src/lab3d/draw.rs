@@ -333,7 +333,7 @@ fn query_shapes(lab: &Lab3d, lane: &Lane<Triangle3>, task: Task, size: f32, d: &
         {
             for &(prim, _) in &snap.best {
                 if let Some(tri) = lab.triangle(prim) {
-                    let closest = tri.closest_point(point);
+                    let closest = tri.project_point(point);
                     d.overlay.push(Segment {
                         a: point,
                         b: closest,

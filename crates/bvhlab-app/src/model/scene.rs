@@ -87,7 +87,7 @@ impl Shape {
     /// The distance from `q` to the shape (its outline, or its nearest point).
     pub fn distance(&self, q: Vec2) -> f32 {
         self.primitives()
-            .map(|s| s.closest_point(q).distance(q))
+            .map(|s| s.project_point(q).distance(q))
             .fold(f32::INFINITY, f32::min)
     }
 }

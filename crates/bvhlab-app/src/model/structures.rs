@@ -164,7 +164,7 @@ impl BuildSettings {
     pub fn bvh_options(&self) -> BvhOptions {
         BvhOptions {
             method: self.bvh_split,
-            max_leaf_size: self.leaf_size.max(1),
+            leaf_size: self.leaf_size.max(1),
             sphere_fit: self.sphere_fit,
             ..BvhOptions::default()
         }
@@ -255,7 +255,7 @@ where
                     resolution: (n > 0).then_some([n, n, depth]),
                     ..GridOptions::default()
                 };
-                tree(Self::Grid(Grid::build_observed(prims, options, observer)))
+                tree(Self::Grid(Grid::build_observed(prims, &options, observer)))
             }
             StructureKind::Bsp => {
                 let options = BspOptions {
@@ -268,11 +268,11 @@ where
             }
             StructureKind::Quadtree => {
                 let options = OrthtreeOptions {
-                    max_leaf_size: settings.leaf_size.max(1),
+                    leaf_size: settings.leaf_size.max(1),
                     max_depth: settings.quadtree_depth,
                 };
                 tree(Self::Quadtree(Orthtree::build_observed(
-                    prims, options, observer,
+                    prims, &options, observer,
                 )))
             }
             StructureKind::KdTree => {
@@ -403,16 +403,41 @@ where
     O: Observer<P::Point>,
 {
     if log {
-        let (tree, log) = Bvh::build_observed(prims, options, observer);
-        (wrap(tree), log)
+        let mut with_splits = SplitLog {
+            events: observer,
+            splits: Vec::new(),
+        };
+        let tree = Bvh::build_observed(prims, options, &mut with_splits);
+        (wrap(tree), with_splits.splits)
     } else {
-        (wrap(Bvh::with_options(prims, options)), Vec::new())
+        (wrap(Bvh::build_with(prims, options)), Vec::new())
+    }
+}
+
+/// Passes the events on to `events` and keeps the builder's split decisions.
+struct SplitLog<'a, O> {
+    events: &'a mut O,
+    splits: Vec<SplitRecord>,
+}
+
+impl<V: Vector, O: Observer<V>> Observer<V> for SplitLog<'_, O> {
+    fn on(&mut self, event: bvhlab::Event<V>) {
+        self.events.on(event);
+    }
+
+    fn wants_splits(&self) -> bool {
+        true
+    }
+
+    fn on_split(&mut self, record: &SplitRecord) {
+        self.splits.push(record.clone());
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use bvhlab::RayCast;
     use bvhlab::glam::Vec2;
     use bvhlab::{Ray2, Segment2};
 

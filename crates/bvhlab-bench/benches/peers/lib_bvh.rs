@@ -49,7 +49,7 @@ impl BHShape<f32, 3> for Shape {
 impl PointDistance<f32, 3> for Shape {
     fn distance_squared(&self, p: Point3<f32>) -> f32 {
         let q = Vec3::new(p.x, p.y, p.z);
-        self.tri.closest_point(q).distance_squared(q)
+        self.tri.project_point(q).distance_squared(q)
     }
 }
 

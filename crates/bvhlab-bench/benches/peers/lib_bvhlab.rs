@@ -4,6 +4,7 @@
 
 use bvhlab::glam::Vec3;
 use bvhlab::{AabbTree3, Ray3, SpatialIndex, Triangle3};
+use bvhlab::{PointQuery, RayCast};
 use bvhlab_bench::workload::BenchRay;
 
 use crate::library::{Library, RayCost, TreeFacts};

@@ -44,9 +44,9 @@ use crate::{Ray, Vector};
 ///    hit point, closest point and overlap, lies in its box (grids, k-d trees, BSP trees,
 ///    octrees and AABB trees cull by it).
 /// 3. **Tests agree with the geometry.** [`ray_hit`](Primitive::ray_hit) gives the least
-///    `t >= 0` whose `ray.at(t)` is on the primitive; [`closest_point`](Primitive::closest_point)
-///    a point of the primitive, no farther from the query than any other, and
-///    [`distance`](Primitive::distance) its distance; [`intersects_aabb`](Primitive::intersects_aabb)
+///    `t >= 0` whose `ray.at(t)` is on the primitive; [`project_point`](Primitive::project_point)
+///    a point of the primitive, no farther from the query than any other;
+///    [`intersects_aabb`](Primitive::intersects_aabb)
 ///    and [`intersects`](Primitive::intersects) are exact (touching counts) and symmetric
 ///    where that applies. Rounding is allowed (a few units in the last place of the
 ///    coordinates: the structures grow their volumes by [`SLACK`](crate::structure::bvh::SLACK)
@@ -56,6 +56,12 @@ use crate::{Ray, Vector};
 ///
 /// A primitive with a NaN or infinite vertex is left out of the BVHs; the other methods need
 /// not handle one.
+///
+/// You implement [`ray_hit`](Primitive::ray_hit) and [`project_point`](Primitive::project_point);
+/// every primitive then answers the same questions as volumes and structures, through
+/// [`RayCast`](crate::RayCast) (`ray_first_hit`, with [`hit_coordinates`](Primitive::hit_coordinates))
+/// and [`PointQuery`](crate::PointQuery) (`closest_point`, `distance`). The example
+/// `examples/custom_primitive.rs` indexes balls this way.
 pub trait Primitive: Copy + Debug + PartialEq + Send + Sync + 'static {
     /// The vector type of the space the primitive lives in.
     type Point: Vector;
@@ -81,13 +87,11 @@ pub trait Primitive: Copy + Debug + PartialEq + Send + Sync + 'static {
         [0.0, 0.0]
     }
     /// The point of the primitive nearest to `point` (on the primitive, no farther than any
-    /// other of its points).
-    fn closest_point(&self, point: Self::Point) -> Self::Point;
-    /// Euclidean distance from `point` to the primitive: the distance to
-    /// [`closest_point`](Self::closest_point), which the default computes.
-    fn distance(&self, point: Self::Point) -> f32 {
-        (self.closest_point(point) - point).length()
-    }
+    /// other of its points): the projection of `point` onto the primitive. Callers ask
+    /// [`PointQuery::closest_point`](crate::PointQuery::closest_point) and
+    /// [`PointQuery::distance`](crate::PointQuery::distance), which every primitive answers
+    /// from this.
+    fn project_point(&self, point: Self::Point) -> Self::Point;
     /// Length (a segment), area (a triangle), 0 (a point). Reported, never used to prune.
     fn measure(&self) -> f32;
     /// A normal, not normalised, of length 2 × area for a triangle and the segment's length

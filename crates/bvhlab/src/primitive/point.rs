@@ -20,7 +20,7 @@ impl<V: Vector> Primitive for V {
         let t = (*self - ray.origin()).dot(d) / d.length_squared();
         (t >= 0.0 && ray.at(t) == *self).then_some(t)
     }
-    fn closest_point(&self, _point: V) -> V {
+    fn project_point(&self, _point: V) -> V {
         *self
     }
     fn measure(&self) -> f32 {

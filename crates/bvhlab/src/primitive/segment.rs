@@ -91,7 +91,7 @@ impl Segment2 {
 
     /// The point of the segment nearest to `p`: the projection of `p` on the line, clamped to
     /// the segment (Ericson, "Real-Time Collision Detection", §5.1.2).
-    pub fn closest_point(&self, p: Vec2) -> Vec2 {
+    pub fn project_point(&self, p: Vec2) -> Vec2 {
         // In f64, so that tiny (1e-20) coordinates do not make the dot products subnormal.
         let (a, e) = (self.a.as_dvec2(), (self.b.as_dvec2() - self.a.as_dvec2()));
         let len2 = e.length_squared();
@@ -124,8 +124,8 @@ impl Primitive for Segment2 {
     fn hit_coordinates(&self, ray: &Ray2, t: f32) -> [f32; 2] {
         [self.hit_parameter(ray, t), 0.0]
     }
-    fn closest_point(&self, point: Vec2) -> Vec2 {
-        Segment2::closest_point(self, point)
+    fn project_point(&self, point: Vec2) -> Vec2 {
+        Segment2::project_point(self, point)
     }
     fn measure(&self) -> f32 {
         self.length()
@@ -170,12 +170,12 @@ mod tests {
     }
 
     #[test]
-    fn closest_point_clamps_to_the_ends() {
+    fn project_point_clamps_to_the_ends() {
         let s = Segment2::new(Vec2::ZERO, Vec2::new(2.0, 0.0));
-        assert_eq!(s.closest_point(Vec2::new(-1.0, 1.0)), Vec2::ZERO);
-        assert_eq!(s.closest_point(Vec2::new(1.0, 1.0)), Vec2::new(1.0, 0.0));
+        assert_eq!(s.project_point(Vec2::new(-1.0, 1.0)), Vec2::ZERO);
+        assert_eq!(s.project_point(Vec2::new(1.0, 1.0)), Vec2::new(1.0, 0.0));
         assert_eq!(
-            Segment2::new(Vec2::ONE, Vec2::ONE).closest_point(Vec2::ZERO),
+            Segment2::new(Vec2::ONE, Vec2::ONE).project_point(Vec2::ZERO),
             Vec2::ONE
         );
     }

@@ -181,7 +181,7 @@ impl Triangle3 {
     /// Voronoi-region method of Ericson, "Real-Time Collision Detection", §5.1.5: find which
     /// vertex, edge or face region `p` projects into using barycentric tests. A degenerate
     /// triangle falls back to the nearest of its three edges.
-    pub fn closest_point(&self, p: Vec3) -> Vec3 {
+    pub fn project_point(&self, p: Vec3) -> Vec3 {
         // In f64: at scales of 1e-20 the f32 dot products below would be subnormal and lose
         // the region decisions; products of f32 differences are (nearly) exact in f64.
         let (a, b, c, p) = (
@@ -289,8 +289,8 @@ impl Primitive for Triangle3 {
         self.ray_barycentric(ray)
             .map_or([0.0, 0.0], |(u, v)| [u, v])
     }
-    fn closest_point(&self, point: Vec3) -> Vec3 {
-        Triangle3::closest_point(self, point)
+    fn project_point(&self, point: Vec3) -> Vec3 {
+        Triangle3::project_point(self, point)
     }
     fn measure(&self) -> f32 {
         self.area()
@@ -335,7 +335,7 @@ mod tests {
         let down = Ray3::new(Vec3::new(0.5, 0.0, 1.0), -Vec3::Z).expect("ray");
         assert_eq!(flat.ray_hit(&down), None);
         assert_eq!(
-            flat.closest_point(Vec3::new(0.5, 1.0, 0.0)),
+            flat.project_point(Vec3::new(0.5, 1.0, 0.0)),
             Vec3::new(0.5, 0.0, 0.0)
         );
     }
@@ -343,17 +343,17 @@ mod tests {
     #[test]
     fn closest_point_regions() {
         let t = tri();
-        assert_eq!(t.closest_point(Vec3::new(-1.0, -1.0, 3.0)), Vec3::ZERO);
+        assert_eq!(t.project_point(Vec3::new(-1.0, -1.0, 3.0)), Vec3::ZERO);
         assert_eq!(
-            t.closest_point(Vec3::new(0.25, 0.25, 3.0)),
+            t.project_point(Vec3::new(0.25, 0.25, 3.0)),
             Vec3::new(0.25, 0.25, 0.0)
         );
         assert_eq!(
-            t.closest_point(Vec3::new(0.5, -2.0, 0.0)),
+            t.project_point(Vec3::new(0.5, -2.0, 0.0)),
             Vec3::new(0.5, 0.0, 0.0)
         );
         assert_eq!(
-            t.closest_point(Vec3::new(2.0, 2.0, 0.0)),
+            t.project_point(Vec3::new(2.0, 2.0, 0.0)),
             Vec3::new(0.5, 0.5, 0.0)
         );
     }

@@ -121,7 +121,7 @@ impl<P: Primitive> SpatialIndex for BruteForce<P> {
         }
         let mut nearest = NearestSet::new(k);
         for (i, prim) in self.prims.iter().enumerate() {
-            let q = prim.closest_point(point);
+            let q = prim.project_point(point);
             let d = (q - point).length();
             observer.on(Event::PrimitiveTest {
                 prim: prim_id(i),

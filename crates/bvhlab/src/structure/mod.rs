@@ -55,7 +55,7 @@ pub use query::{Hit, HitTracker, Nearest, NearestSet, QueryCost, RangeShape, Tra
 pub use stats::{Stats, ValidationError};
 pub use update::{Removed, UpdateError};
 
-use crate::error::{GeometryError, check_finite};
+use crate::queries::{PointQuery, RayCast};
 use crate::{Primitive, Ray};
 
 /// The vector type a structure works in.
@@ -63,11 +63,18 @@ pub type PointOf<S> = <<S as SpatialIndex>::Prim as Primitive>::Point;
 
 /// The queries every spatial structure answers, exactly.
 ///
+/// The first hit, any hit and the closest point are the questions volumes and primitives
+/// answer too: [`RayCast`] and [`PointQuery`], which every structure implements (the macro
+/// `queries_by_observed_walks!` answers them by the observed walks with no observer; the
+/// [`Bvh`] has faster unobserved walks of its own). This trait adds what only a structure
+/// over many primitives answers: all hits, the k nearest, range and collision, each also
+/// observed step by step, and the structure's statistics and invariants.
+///
 /// Primitives are named by their index in the slice the structure was built from. Answers
 /// are deterministic and equal to [`BruteForce`]'s: hits at equal `t` and neighbours at equal
 /// distance are ordered by index. A query point with a NaN or infinite coordinate gets no
 /// answer (`None` or empty); the `checked_` forms report it as an error instead.
-pub trait SpatialIndex {
+pub trait SpatialIndex: RayCast<PointOf<Self>> + PointQuery<PointOf<Self>> {
     /// What the structure stores.
     type Prim: Primitive;
 
@@ -139,43 +146,10 @@ pub trait SpatialIndex {
     /// A [`ValidationError`] saying what is wrong.
     fn validate(&self) -> Result<(), ValidationError>;
 
-    /// The first hit along the ray with `0 <= t <= t_max`.
-    #[inline]
-    fn ray_first_hit(&self, ray: &Ray<PointOf<Self>>, t_max: f32) -> Option<Hit> {
-        self.ray_first_hit_observed(ray, t_max, &mut ()).answer
-    }
-
-    /// Some hit with `0 <= t <= t_max` (occlusion).
-    #[inline]
-    fn ray_any_hit(&self, ray: &Ray<PointOf<Self>>, t_max: f32) -> Option<Hit> {
-        self.ray_any_hit_observed(ray, t_max, &mut ()).answer
-    }
-
     /// Every hit with `0 <= t <= t_max`, sorted by `t`.
     #[inline]
     fn ray_all_hits(&self, ray: &Ray<PointOf<Self>>, t_max: f32) -> Vec<Hit> {
         self.ray_all_hits_observed(ray, t_max, &mut ()).answer
-    }
-
-    /// The primitive nearest to `point`, its nearest point and the distance.
-    #[inline]
-    fn closest_point(&self, point: PointOf<Self>) -> Option<Nearest<PointOf<Self>>> {
-        self.k_nearest_observed(point, 1, &mut ())
-            .answer
-            .into_iter()
-            .next()
-    }
-
-    /// [`closest_point`](Self::closest_point), rejecting a non-finite query point.
-    ///
-    /// # Errors
-    /// [`GeometryError::NonFinite`] when a coordinate of `point` is NaN or infinite.
-    #[inline]
-    fn checked_closest_point(
-        &self,
-        point: PointOf<Self>,
-    ) -> Result<Option<Nearest<PointOf<Self>>>, GeometryError> {
-        check_finite(|| "query point".into(), point).map(|p| self.closest_point(p))
     }
 
     /// The `k` nearest primitives, nearest first.
@@ -196,3 +170,45 @@ pub trait SpatialIndex {
         self.collide_observed(other, &mut ()).answer
     }
 }
+
+/// Implements [`RayCast`] and [`PointQuery`] for a structure generic over its primitive
+/// (`MyTree<P>`) through its [`SpatialIndex`] observed walks with the no-op observer `()`
+/// (whose calls compile away): how every structure here but the [`Bvh`] answers them, and
+/// what a structure of your own can use once it implements [`SpatialIndex`]:
+/// `bvhlab::queries_by_observed_walks!(MyTree);`.
+#[macro_export]
+macro_rules! queries_by_observed_walks {
+    ($structure:ident) => {
+        impl<P: $crate::Primitive> $crate::RayCast<P::Point> for $structure<P> {
+            #[inline]
+            fn ray_first_hit(
+                &self,
+                ray: &$crate::Ray<P::Point>,
+                t_max: f32,
+            ) -> Option<$crate::Hit> {
+                $crate::SpatialIndex::ray_first_hit_observed(self, ray, t_max, &mut ()).answer
+            }
+
+            #[inline]
+            fn ray_any_hit(&self, ray: &$crate::Ray<P::Point>, t_max: f32) -> Option<$crate::Hit> {
+                $crate::SpatialIndex::ray_any_hit_observed(self, ray, t_max, &mut ()).answer
+            }
+        }
+
+        impl<P: $crate::Primitive> $crate::PointQuery<P::Point> for $structure<P> {
+            #[inline]
+            fn closest_point(&self, point: P::Point) -> Option<$crate::Nearest<P::Point>> {
+                $crate::SpatialIndex::k_nearest_observed(self, point, 1, &mut ())
+                    .answer
+                    .into_iter()
+                    .next()
+            }
+        }
+    };
+}
+
+queries_by_observed_walks!(BruteForce);
+queries_by_observed_walks!(KdTree);
+queries_by_observed_walks!(BspTree);
+queries_by_observed_walks!(Grid);
+queries_by_observed_walks!(Orthtree);

@@ -175,6 +175,7 @@
 //! [`SpatialIndex`]: super::SpatialIndex
 
 use crate::Vector;
+use crate::structure::bvh::SplitRecord;
 
 /// A node of a structure, by its index in the structure's node array (for a grid: a cell, by
 /// its linear index).
@@ -403,9 +404,29 @@ pub enum Event<V: Vector> {
 ///
 /// Implemented for `()` (does nothing, costs nothing), for [`Recorder`] (keeps every event,
 /// for playback) and for any `FnMut(Event<V>)`.
+///
+/// Besides the events, a builder that weighs candidate planes reports each node's decision
+/// with its whole cost curve to an observer that [asks for them](Self::wants_splits) (the
+/// BVH's builders: [`SplitRecord`]); the curve is a vector per node, so builders compute it
+/// only then.
 pub trait Observer<V: Vector> {
     /// One step.
     fn on(&mut self, event: Event<V>);
+
+    /// Whether this observer keeps split decisions ([`on_split`](Self::on_split)). `false`
+    /// by default, and builders then skip the cost curves.
+    #[inline(always)]
+    fn wants_splits(&self) -> bool {
+        false
+    }
+
+    /// One node's split decision, with the cost of every candidate plane, after the
+    /// [`Event::BuildSplit`] or [`Event::BuildLeaf`] of the same node. Called only when
+    /// [`wants_splits`](Self::wants_splits) says so.
+    #[inline(always)]
+    fn on_split(&mut self, record: &SplitRecord) {
+        let _ = record;
+    }
 }
 
 impl<V: Vector> Observer<V> for () {
@@ -420,15 +441,26 @@ impl<V: Vector, F: FnMut(Event<V>)> Observer<V> for F {
     }
 }
 
-/// An observer that keeps every event in order, for playback and for tests.
+/// An observer that keeps every event in order, for playback and for tests, and every split
+/// decision of a build.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Recorder<V: Vector> {
     /// The events, in the order they happened.
     pub events: Vec<Event<V>>,
+    /// A build's split decisions with their cost curves, node by node.
+    pub splits: Vec<SplitRecord>,
 }
 
 impl<V: Vector> Observer<V> for Recorder<V> {
     fn on(&mut self, event: Event<V>) {
         self.events.push(event);
+    }
+
+    fn wants_splits(&self) -> bool {
+        true
+    }
+
+    fn on_split(&mut self, record: &SplitRecord) {
+        self.splits.push(record.clone());
     }
 }

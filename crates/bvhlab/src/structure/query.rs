@@ -1,6 +1,7 @@
 //! What queries answer, what they cost, and the small bookkeeping every structure's queries
 //! share (the best hit so far, the k nearest so far), so that it is written once.
 
+use crate::PointQuery;
 use crate::volume::{Aabb, BoundingVolume, Sphere};
 use crate::{Primitive, Vector};
 

@@ -2,6 +2,8 @@
 
 use super::{BoundingVolume, checked_points, finite_points};
 use crate::error::GeometryError;
+use crate::queries::{PointQuery, RayCast, volume_hit, volume_nearest};
+use crate::{Hit, Nearest};
 use crate::{Ray, Vector};
 
 /// An axis-aligned box `[min, max]`, closed, in 2D ([`Aabb2`](crate::Aabb2)) or 3D
@@ -172,11 +174,6 @@ impl<V: Vector> BoundingVolume for Aabb<V> {
     }
 
     #[inline]
-    fn closest_point(&self, point: V) -> Option<V> {
-        (!self.is_empty()).then(|| point.max(self.min).min(self.max))
-    }
-
-    #[inline]
     fn contains(&self, point: V) -> bool {
         (0..V::DIM)
             .all(|i| self.min.coord(i) <= point.coord(i) && point.coord(i) <= self.max.coord(i))
@@ -213,5 +210,27 @@ impl<V: Vector> BoundingVolume for Aabb<V> {
     #[inline]
     fn aabb(&self) -> Self {
         *self
+    }
+}
+
+impl<V: Vector> Aabb<V> {
+    #[inline]
+    pub(crate) fn nearest_point(&self, point: V) -> Option<V> {
+        (!self.is_empty()).then(|| point.max(self.min).min(self.max))
+    }
+}
+
+impl<V: Vector> RayCast<V> for Aabb<V> {
+    /// Where the ray enters ([`BoundingVolume::ray_interval`]): `t = 0` from inside.
+    #[inline]
+    fn ray_first_hit(&self, ray: &Ray<V>, t_max: f32) -> Option<Hit> {
+        volume_hit(self.ray_interval(ray), t_max)
+    }
+}
+
+impl<V: Vector> PointQuery<V> for Aabb<V> {
+    #[inline]
+    fn closest_point(&self, point: V) -> Option<Nearest<V>> {
+        volume_nearest(point, self.nearest_point(point))
     }
 }

@@ -9,6 +9,8 @@
 mod half_spaces;
 pub(super) mod predicates;
 
+use crate::queries::{PointQuery, RayCast, volume_hit, volume_nearest};
+use crate::{Hit, Nearest};
 use glam::DVec3;
 
 use self::half_spaces::{HalfSpace, facet_normal};
@@ -168,37 +170,6 @@ impl<V: Vector> BoundingVolume for ConvexHull<V> {
         Some((t_enter as f32, t_exit as f32))
     }
 
-    /// The point itself when [contained](BoundingVolume::contains); otherwise the nearest of
-    /// the facets' closest points (for a convex set the nearest point to an outside point lies
-    /// on the boundary). A segment or a point in 3D, which have no facets, clamp to the
-    /// segment or return the point. O(number of facets).
-    fn closest_point(&self, point: V) -> Option<V> {
-        if self.is_empty() {
-            return None;
-        }
-        if self.contains(point) {
-            return Some(point);
-        }
-        let nearer = |a: V, b: V| {
-            if (a - point).length_squared() <= (b - point).length_squared() {
-                a
-            } else {
-                b
-            }
-        };
-        let on_facets = self.facets.iter().map(|f| f.closest_point(point));
-        let best = match (self.facets.is_empty(), self.vertices.as_slice()) {
-            (false, _) => on_facets.reduce(nearer),
-            (true, &[a, b]) => {
-                let e = b - a;
-                let s = ((point - a).dot(e) / e.length_squared()).clamp(0.0, 1.0);
-                Some(nearer(a + e * s, a))
-            }
-            (true, vertices) => vertices.iter().copied().reduce(nearer),
-        };
-        best.or(self.vertices.first().copied())
-    }
-
     /// Every half-space test passes within the [tolerance](Self::tolerance). O(facets).
     fn contains(&self, point: V) -> bool {
         let p = point.to_dvec3();
@@ -303,5 +274,53 @@ impl<V: Vector> BoundingVolume for ConvexHull<V> {
 
     fn aabb(&self) -> Aabb<V> {
         Aabb::from_points(&self.vertices)
+    }
+}
+
+impl<V: Vector> ConvexHull<V> {
+    /// The point itself when [contained](BoundingVolume::contains); otherwise the nearest of
+    /// the facets' closest points (for a convex set the nearest point to an outside point lies
+    /// on the boundary). A segment or a point in 3D, which have no facets, clamp to the
+    /// segment or return the point. O(number of facets).
+    pub(crate) fn nearest_point(&self, point: V) -> Option<V> {
+        if self.is_empty() {
+            return None;
+        }
+        if self.contains(point) {
+            return Some(point);
+        }
+        let nearer = |a: V, b: V| {
+            if (a - point).length_squared() <= (b - point).length_squared() {
+                a
+            } else {
+                b
+            }
+        };
+        let on_facets = self.facets.iter().map(|f| f.project_point(point));
+        let best = match (self.facets.is_empty(), self.vertices.as_slice()) {
+            (false, _) => on_facets.reduce(nearer),
+            (true, &[a, b]) => {
+                let e = b - a;
+                let s = ((point - a).dot(e) / e.length_squared()).clamp(0.0, 1.0);
+                Some(nearer(a + e * s, a))
+            }
+            (true, vertices) => vertices.iter().copied().reduce(nearer),
+        };
+        best.or(self.vertices.first().copied())
+    }
+}
+
+impl<V: Vector> RayCast<V> for ConvexHull<V> {
+    /// Where the ray enters ([`BoundingVolume::ray_interval`]): `t = 0` from inside.
+    #[inline]
+    fn ray_first_hit(&self, ray: &Ray<V>, t_max: f32) -> Option<Hit> {
+        volume_hit(self.ray_interval(ray), t_max)
+    }
+}
+
+impl<V: Vector> PointQuery<V> for ConvexHull<V> {
+    #[inline]
+    fn closest_point(&self, point: V) -> Option<Nearest<V>> {
+        volume_nearest(point, self.nearest_point(point))
     }
 }

@@ -25,9 +25,15 @@ use std::borrow::Cow;
 use std::fmt::Debug;
 
 use crate::error::{GeometryError, check_finite};
+use crate::queries::{PointQuery, RayCast};
 use crate::{Ray, Vector};
 
 /// The queries every bounding volume answers, in 2D and 3D.
+///
+/// Where the ray first meets a volume and its nearest point to a point are the questions
+/// every primitive and structure answers too: [`RayCast`] and [`PointQuery`], which every
+/// volume implements. This trait adds what only volumes answer: the whole interval a ray
+/// spends inside, containment, overlap, merging and measures.
 ///
 /// Volumes are closed sets: a point on the boundary is contained, and a ray that only touches
 /// the boundary hits. The empty volume (fitted to no points) contains nothing, is missed by
@@ -36,7 +42,7 @@ use crate::{Ray, Vector};
 /// The plain queries take the query point as given; a point with a NaN or infinite coordinate
 /// then yields `false`, `None` or NaN. The `checked_` variants reject such a point with a
 /// [`GeometryError`] instead (rays are checked when they are made, see [`Ray::new`]).
-pub trait BoundingVolume: Clone + Debug {
+pub trait BoundingVolume: Clone + Debug + RayCast<Self::Point> + PointQuery<Self::Point> {
     /// The vector type: [`Vec2`](glam::Vec2) or [`Vec3`](glam::Vec3).
     type Point: Vector;
 
@@ -44,16 +50,6 @@ pub trait BoundingVolume: Clone + Debug {
     /// `None` when the ray misses. `t_enter = 0` when the origin is inside; a ray that only
     /// touches the boundary gives `t_enter == t_exit`.
     fn ray_interval(&self, ray: &Ray<Self::Point>) -> Option<(f32, f32)>;
-
-    /// The point of the volume nearest to `point` (`point` itself when inside), or `None` for
-    /// the empty volume.
-    fn closest_point(&self, point: Self::Point) -> Option<Self::Point>;
-
-    /// Euclidean distance from `point` to the volume: 0 inside, `+inf` for the empty volume.
-    fn distance(&self, point: Self::Point) -> f32 {
-        self.closest_point(point)
-            .map_or(f32::INFINITY, |q| (q - point).length())
-    }
 
     /// Whether `point` lies in the volume, boundary included.
     fn contains(&self, point: Self::Point) -> bool;
@@ -76,25 +72,6 @@ pub trait BoundingVolume: Clone + Debug {
 
     /// The axis-aligned box around this volume.
     fn aabb(&self) -> Aabb<Self::Point>;
-
-    /// [`distance`](Self::distance), rejecting a non-finite query point.
-    ///
-    /// # Errors
-    /// [`GeometryError::NonFinite`] when a coordinate of `point` is NaN or infinite.
-    fn checked_distance(&self, point: Self::Point) -> Result<f32, GeometryError> {
-        check_finite(|| "query point".into(), point).map(|p| self.distance(p))
-    }
-
-    /// [`closest_point`](Self::closest_point), rejecting a non-finite query point.
-    ///
-    /// # Errors
-    /// [`GeometryError::NonFinite`] when a coordinate of `point` is NaN or infinite.
-    fn checked_closest_point(
-        &self,
-        point: Self::Point,
-    ) -> Result<Option<Self::Point>, GeometryError> {
-        check_finite(|| "query point".into(), point).map(|p| self.closest_point(p))
-    }
 
     /// [`contains`](Self::contains), rejecting a non-finite query point.
     ///

@@ -9,6 +9,8 @@
 
 use super::{Aabb, BoundingVolume, SlabTest, checked_points, finite_points};
 use crate::error::GeometryError;
+use crate::queries::{PointQuery, RayCast, volume_hit, volume_nearest};
+use crate::{Hit, Nearest};
 use crate::{Ray, Vector};
 
 /// An oriented box, closed, in 2D ([`Obb2`](crate::Obb2)) or 3D ([`Obb3`](crate::Obb3)): the
@@ -235,19 +237,6 @@ impl<V: Vector> BoundingVolume for Obb<V> {
         }
     }
 
-    /// Clamps the point to `[-half_extents, half_extents]` in the box's frame (Ericson §5.1.4);
-    /// a contained point is returned as it is, not moved by the round trip through the frame.
-    fn closest_point(&self, point: V) -> Option<V> {
-        if self.is_empty() {
-            return None;
-        }
-        if self.contains(point) {
-            return Some(point);
-        }
-        let h = self.half_extents;
-        Some(self.to_world(self.to_local(point).max(-h).min(h)))
-    }
-
     fn contains(&self, point: V) -> bool {
         let local = self.to_local(point);
         (0..V::DIM).all(|i| local.coord(i).abs() <= self.half_extents.coord(i))
@@ -301,5 +290,35 @@ impl<V: Vector> BoundingVolume for Obb<V> {
             r + self.axis(i).abs() * self.half_extents.coord(i)
         });
         Aabb::new(self.center - reach, self.center + reach)
+    }
+}
+
+impl<V: Vector> Obb<V> {
+    /// Clamps the point to `[-half_extents, half_extents]` in the box's frame (Ericson §5.1.4);
+    /// a contained point is returned as it is, not moved by the round trip through the frame.
+    pub(crate) fn nearest_point(&self, point: V) -> Option<V> {
+        if self.is_empty() {
+            return None;
+        }
+        if self.contains(point) {
+            return Some(point);
+        }
+        let h = self.half_extents;
+        Some(self.to_world(self.to_local(point).max(-h).min(h)))
+    }
+}
+
+impl<V: Vector> RayCast<V> for Obb<V> {
+    /// Where the ray enters ([`BoundingVolume::ray_interval`]): `t = 0` from inside.
+    #[inline]
+    fn ray_first_hit(&self, ray: &Ray<V>, t_max: f32) -> Option<Hit> {
+        volume_hit(self.ray_interval(ray), t_max)
+    }
+}
+
+impl<V: Vector> PointQuery<V> for Obb<V> {
+    #[inline]
+    fn closest_point(&self, point: V) -> Option<Nearest<V>> {
+        volume_nearest(point, self.nearest_point(point))
     }
 }

@@ -2,6 +2,8 @@
 //!
 //! The fits live in [`super::sphere_fit`].
 
+use crate::queries::{PointQuery, RayCast, volume_hit, volume_nearest};
+use crate::{Hit, Nearest};
 use glam::DVec3;
 
 use super::{Aabb, BoundingVolume};
@@ -121,23 +123,6 @@ impl<V: Vector> BoundingVolume for Sphere<V> {
         (t1 >= 0.0).then(|| (t0.max(0.0) as f32, t1 as f32))
     }
 
-    fn closest_point(&self, point: V) -> Option<V> {
-        if self.is_empty() {
-            return None;
-        }
-        let offset = point.to_dvec3() - self.center.to_dvec3();
-        let dist = offset.length();
-        Some(if dist <= f64::from(self.radius) {
-            point
-        } else {
-            V::from_dvec3(self.center.to_dvec3() + offset * (f64::from(self.radius) / dist))
-        })
-    }
-
-    fn distance(&self, point: V) -> f32 {
-        (self.center_distance(point) - f64::from(self.radius)).max(0.0) as f32
-    }
-
     fn contains(&self, point: V) -> bool {
         self.center_distance(point) <= f64::from(self.radius)
     }
@@ -202,5 +187,39 @@ impl<V: Vector> BoundingVolume for Sphere<V> {
         }
         let extent = V::splat(self.radius);
         Aabb::new(self.center - extent, self.center + extent)
+    }
+}
+
+impl<V: Vector> Sphere<V> {
+    pub(crate) fn nearest_point(&self, point: V) -> Option<V> {
+        if self.is_empty() {
+            return None;
+        }
+        let offset = point.to_dvec3() - self.center.to_dvec3();
+        let dist = offset.length();
+        Some(if dist <= f64::from(self.radius) {
+            point
+        } else {
+            V::from_dvec3(self.center.to_dvec3() + offset * (f64::from(self.radius) / dist))
+        })
+    }
+}
+
+impl<V: Vector> RayCast<V> for Sphere<V> {
+    /// Where the ray enters ([`BoundingVolume::ray_interval`]): `t = 0` from inside.
+    #[inline]
+    fn ray_first_hit(&self, ray: &Ray<V>, t_max: f32) -> Option<Hit> {
+        volume_hit(self.ray_interval(ray), t_max)
+    }
+}
+
+impl<V: Vector> PointQuery<V> for Sphere<V> {
+    #[inline]
+    fn closest_point(&self, point: V) -> Option<Nearest<V>> {
+        volume_nearest(point, self.nearest_point(point))
+    }
+
+    fn distance(&self, point: V) -> f32 {
+        (self.center_distance(point) - f64::from(self.radius)).max(0.0) as f32
     }
 }

@@ -45,7 +45,9 @@ where
     P: Primitive,
 {
     let name = format!("{name} ({} tree, {:?})", B::NAME, options.method);
-    let (bvh, log) = Bvh::<B, P>::build_observed(prims, options, &mut ());
+    let mut split_log = Recorder::default();
+    let bvh = Bvh::<B, P>::build_observed(prims, options, &mut split_log);
+    let log = split_log.splits;
     bvh.validate().unwrap_or_else(|e| panic!("{name}: {e}"));
     let stats = bvh.stats();
     assert_eq!(stats.primitives, prims.len(), "{name}: {stats:?}");
@@ -271,8 +273,8 @@ where
     P: Primitive,
 {
     let (ta, tb) = (
-        Bvh::<B, P>::with_options(a, options),
-        Bvh::<B, P>::with_options(b, options),
+        Bvh::<B, P>::build_with(a, options),
+        Bvh::<B, P>::build_with(b, options),
     );
     let want = BruteForce::build(a).collide(&BruteForce::build(b));
     let mut recorder = Recorder::default();

@@ -1,6 +1,7 @@
 //! The comparison of every query against brute force, and the rays and query points that
 //! exercise cell boundaries and split planes.
 
+use bvhlab::RayCast;
 use bvhlab::structure::{BruteForce, PointOf, PrimitiveResult, RangeShape, Recorder};
 use bvhlab::{Aabb, BoundingVolume, Event, Primitive, Ray, SpatialIndex, Sphere, Vector};
 use rand::RngExt;

@@ -175,7 +175,7 @@ fn check_point_and_segment<V: Vector>(seed: u64, hull_of: impl Fn(&[V]) -> Conve
         );
         assert!(hull.facets().is_empty() && hull.measure() == 0.0);
         assert!(!hull.contains(p + dir * 1e-3));
-        assert_eq!(hull.closest_point(p + dir), Some(p));
+        assert_eq!(hull.closest_point(p + dir).map(|n| n.point), Some(p));
     }
     // Repeats, out of order, with the extremes at steps 0 and 4.
     let line: Vec<V> = (0..15)

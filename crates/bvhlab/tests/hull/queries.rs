@@ -222,7 +222,7 @@ fn check_distances<V: Vector>(seed: u64) {
             .max(hull.aabb().size().length());
         for _ in 0..60 {
             let p: V = random_vector(&mut r, 7.0);
-            let q = hull.closest_point(p).expect("not empty");
+            let q = hull.closest_point(p).expect("not empty").point;
             let distance = hull.distance(p);
             assert!(hull.contains(q), "closest point {q:?} is outside");
             assert!(((q - p).length() - distance).abs() < 1e-5);

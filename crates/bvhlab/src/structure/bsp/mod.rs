@@ -99,11 +99,11 @@ pub struct BspTree<P: Primitive> {
 impl<P: Primitive> BspTree<P> {
     /// Builds the tree with [`BspOptions::default`].
     pub fn build(prims: &[P]) -> Self {
-        Self::with_options(prims, &BspOptions::default())
+        Self::build_with(prims, &BspOptions::default())
     }
 
     /// Builds the tree with the given options.
-    pub fn with_options(prims: &[P], options: &BspOptions) -> Self {
+    pub fn build_with(prims: &[P], options: &BspOptions) -> Self {
         build::build(prims, options, &mut ())
     }
 

@@ -23,7 +23,7 @@
 //! let floor = Triangle3::new(Vec3::ZERO, Vec3::X * 4.0, Vec3::Y * 4.0);
 //! let roof = Triangle3::new(Vec3::Z, Vec3::Z + Vec3::X * 4.0, Vec3::Z + Vec3::Y * 4.0);
 //! let options = BvhOptions::with_method(SplitMethod::SpatialMedian);
-//! let tree = SphereTree::<Triangle3>::with_options(&[floor, roof], &options);
+//! let tree = SphereTree::<Triangle3>::build_with(&[floor, roof], &options);
 //! tree.validate()?;
 //!
 //! let down = Ray3::new(Vec3::new(1.0, 1.0, 3.0), -Vec3::Z)?;
@@ -41,8 +41,9 @@
 //!
 //! - **Build** ([`Bvh::build_observed`]): per node, depth-first and first child first,
 //!   `BuildNode` (its index in [`Bvh::nodes`], parent, depth, size), then `BuildSplit`
-//!   (axis-aligned plane, sizes of both sides, SAH cost for SAH splits) or `BuildLeaf`. The
-//!   returned [`SplitRecord`]s keep each SAH cost curve.
+//!   (axis-aligned plane, sizes of both sides, SAH cost for SAH splits) or `BuildLeaf`. An
+//!   observer that [wants them](Observer::wants_splits) also gets each node's
+//!   [`SplitRecord`] with its SAH cost curve ([`Observer::on_split`]).
 //! - **Ray first hit / any hit / all hits**: `RayBoundTest` of the root, then for each node
 //!   popped from the stack either `Prune(BeyondBestHit, at Pop)` (the best hit, or `t_max`,
 //!   has meanwhile moved before its entry) or `EnterNode`; at an inner node `RayBoundTest` of
@@ -106,11 +107,11 @@
 //! | call | runs |
 //! | --- | --- |
 //! | [`ray_first_hit_observed`](SpatialIndex::ray_first_hit_observed) | `walk/ray.rs` (`first_hit`) |
-//! | [`ray_first_hit`](SpatialIndex::ray_first_hit) | `walk/fast_ray.rs`, a walk of its own |
+//! | [`ray_first_hit`](RayCast::ray_first_hit) | `walk/fast_ray.rs`, a walk of its own |
 //! | [`ray_any_hit_observed`](SpatialIndex::ray_any_hit_observed) | `walk/ray.rs` (`any_hit`) |
-//! | [`ray_any_hit`](SpatialIndex::ray_any_hit) | `walk/fast_ray.rs`, the first-hit walk stopping at the first hit |
+//! | [`ray_any_hit`](RayCast::ray_any_hit) | `walk/fast_ray.rs`, the first-hit walk stopping at the first hit |
 //! | [`ray_all_hits_observed`](SpatialIndex::ray_all_hits_observed), [`ray_all_hits`](SpatialIndex::ray_all_hits) | `walk/ray.rs` (`all_hits`) |
-//! | [`closest_point`](SpatialIndex::closest_point), [`checked_closest_point`](SpatialIndex::checked_closest_point) | `walk/fast_nearest.rs`, a walk of its own |
+//! | [`closest_point`](PointQuery::closest_point), [`checked_closest_point`](PointQuery::checked_closest_point) | `walk/fast_nearest.rs`, a walk of its own |
 //! | [`k_nearest_observed`](SpatialIndex::k_nearest_observed), [`k_nearest`](SpatialIndex::k_nearest) (for every `k`, 1 too) | `walk/nearest.rs` |
 //! | [`range_observed`](SpatialIndex::range_observed), [`range`](SpatialIndex::range) | `walk/range.rs` |
 //! | [`collide_observed`](SpatialIndex::collide_observed), [`collide`](SpatialIndex::collide) | `walk/collide.rs` |
@@ -124,18 +125,18 @@
 //! | [`Bvh4::refit`], [`Bvh4::needs_rebuild`], [`Bvh4::validate`] | `wide/refit.rs`, `wide/validate.rs` |
 //! | [`Bvh::insert`], [`Bvh::remove`], [`Bvh::replace`] (AABB trees) | `update/mod.rs`, placing with `update/search.rs`, editing with `update/splice.rs`, rotating with `update/rotate.rs` |
 //! | [`Bvh::optimize_by_reinsertion`] (AABB trees) | `update/optimize.rs` |
-//! | [`Bvh::build`], [`Bvh::with_options`]: an AABB tree with [`SplitMethod::BinnedSah`] | `build/fast.rs`, in one go |
-//! | [`Bvh::build`], [`Bvh::with_options`]: any other tree; [`Bvh::build_observed`] | `build/mod.rs` and `node_stages.rs`, the resumable builder run to the end |
+//! | [`Bvh::build`], [`Bvh::build_with`]: an AABB tree with [`SplitMethod::BinnedSah`] | `build/fast.rs`, in one go |
+//! | [`Bvh::build`], [`Bvh::build_with`]: any other tree; [`Bvh::build_observed`] | `build/mod.rs` and `node_stages.rs`, the resumable builder run to the end |
 //! | [`BvhBuild::step`], [`BvhBuild::finish`] | the same builder, a budget at a time (`build/job.rs`) |
-//! | [`Bvh4::build`], [`Bvh4::with_options`] | with the binned SAH `build/fast.rs`, then the collapse of `wide/layout.rs`; otherwise [`Bvh::with_options`] and [`Bvh4::from_bvh`] |
+//! | [`Bvh4::build`], [`Bvh4::build_with`] | with the binned SAH `build/fast.rs`, then the collapse of `wide/layout.rs`; otherwise [`Bvh::build_with`] and [`Bvh4::from_bvh`] |
 //! | [`Bvh4::from_bvh`] | `wide/layout.rs` (the collapse) |
 //!
 //! Every plain form not named above is its `_observed` form with the no-op observer `()`
 //! (the defaults of [`SpatialIndex`]): the observer costs nothing there (`()`'s
 //! [`Observer::on`] is empty and always inlined), but the walk still keeps what its reports
 //! would need and counts its [`QueryCost`](super::QueryCost). Three plain forms do not: the
-//! plain [`ray_first_hit`](SpatialIndex::ray_first_hit), [`ray_any_hit`](SpatialIndex::ray_any_hit)
-//! and [`closest_point`](SpatialIndex::closest_point), which nobody watches, take walks of their
+//! plain [`ray_first_hit`](RayCast::ray_first_hit), [`ray_any_hit`](RayCast::ray_any_hit)
+//! and [`closest_point`](PointQuery::closest_point), which nobody watches, take walks of their
 //! own that skip what only the lab needs (each waiting node's depth, the counters, the order
 //! of reports, the k-best set): the nearer child is visited next without touching the stack,
 //! and only the farther waits. They answer exactly what the observed walks answer, bit for
@@ -172,7 +173,7 @@ use super::{
 };
 use crate::structure::query::{placed, placed_all_traced, placed_traced};
 use crate::volume::{Aabb, Obb, Sphere};
-use crate::{Primitive, Ray};
+use crate::{PointQuery, Primitive, Ray, RayCast};
 
 /// An AABB tree: a [`Bvh`] whose nodes are axis-aligned boxes.
 pub type AabbTree<P> = Bvh<Aabb<<P as Primitive>::Point>, P>;
@@ -188,30 +189,29 @@ where
 {
     /// Builds the tree with the default options (binned SAH, leaves of at most 4).
     pub fn build(prims: &[P]) -> Self {
-        Self::with_options(prims, &BvhOptions::default())
+        Self::build_with(prims, &BvhOptions::default())
     }
 
     /// Builds the tree with the given options.
-    pub fn with_options(prims: &[P], options: &BvhOptions) -> Self {
+    pub fn build_with(prims: &[P], options: &BvhOptions) -> Self {
         // The same tree either way; a box tree's SAH build has a faster path.
         if !B::NEEDS_VERTICES && options.method == SplitMethod::BinnedSah {
             return build::build_sah_boxes(prims, options);
         }
-        build::build(prims, options, &mut (), None)
+        build::build(prims, options, &mut ())
     }
 
     /// Builds the tree, reporting each node to `observer` (`BuildNode` when a node is made,
     /// then `BuildSplit` with the plane and, for the SAH, its cost, or `BuildLeaf`; nodes
-    /// depth-first, first child first), and returns every split decision with its SAH cost
-    /// curve.
+    /// depth-first, first child first), and, to an observer that
+    /// [wants them](Observer::wants_splits), every split decision with its SAH cost curve
+    /// ([`Observer::on_split`]).
     pub fn build_observed<O: Observer<P::Point>>(
         prims: &[P],
         options: &BvhOptions,
         observer: &mut O,
-    ) -> (Self, Vec<SplitRecord>) {
-        let mut log = Vec::new();
-        let bvh = build::build(prims, options, observer, Some(&mut log));
-        (bvh, log)
+    ) -> Self {
+        build::build(prims, options, observer)
     }
 }
 
@@ -237,27 +237,6 @@ where
         observer: &mut O,
     ) -> Traced<Option<Hit>> {
         placed_traced(self.first_hit(ray, t_max, observer), &self.prims, ray)
-    }
-
-    /// The unobserved walk (`walk/fast_ray.rs`): the observed one's answer, without its
-    /// bookkeeping.
-    #[inline]
-    fn ray_first_hit(&self, ray: &Ray<PointOf<Self>>, t_max: f32) -> Option<Hit> {
-        placed(self.first_hit_fast(ray, t_max), &self.prims, ray)
-    }
-
-    /// The unobserved walk (`walk/fast_nearest.rs`): the observed one's answer, without its
-    /// bookkeeping.
-    #[inline]
-    fn closest_point(&self, point: PointOf<Self>) -> Option<Nearest<PointOf<Self>>> {
-        self.closest_point_fast(point)
-    }
-
-    /// The unobserved walk (`walk/fast_ray.rs`, stopping at the first hit): the observed
-    /// one's answer, without its bookkeeping.
-    #[inline]
-    fn ray_any_hit(&self, ray: &Ray<PointOf<Self>>, t_max: f32) -> Option<Hit> {
-        placed(self.any_hit_fast(ray, t_max), &self.prims, ray)
     }
 
     fn ray_any_hit_observed<O: Observer<PointOf<Self>>>(
@@ -309,5 +288,38 @@ where
 
     fn validate(&self) -> Result<(), ValidationError> {
         self.validate_impl()
+    }
+}
+
+impl<B, P> RayCast<P::Point> for Bvh<B, P>
+where
+    B: NodeVolume<Point = P::Point>,
+    P: Primitive,
+{
+    /// The unobserved walk (`walk/fast_ray.rs`): the observed one's answer, without its
+    /// bookkeeping.
+    #[inline]
+    fn ray_first_hit(&self, ray: &Ray<P::Point>, t_max: f32) -> Option<Hit> {
+        placed(self.first_hit_fast(ray, t_max), &self.prims, ray)
+    }
+
+    /// The unobserved walk (`walk/fast_ray.rs`, stopping at the first hit): the observed
+    /// one's answer, without its bookkeeping.
+    #[inline]
+    fn ray_any_hit(&self, ray: &Ray<P::Point>, t_max: f32) -> Option<Hit> {
+        placed(self.any_hit_fast(ray, t_max), &self.prims, ray)
+    }
+}
+
+impl<B, P> PointQuery<P::Point> for Bvh<B, P>
+where
+    B: NodeVolume<Point = P::Point>,
+    P: Primitive,
+{
+    /// The unobserved walk (`walk/fast_nearest.rs`): the observed one's answer, without its
+    /// bookkeeping.
+    #[inline]
+    fn closest_point(&self, point: P::Point) -> Option<Nearest<P::Point>> {
+        self.closest_point_fast(point)
     }
 }

@@ -10,11 +10,11 @@ use crate::{Primitive, Vector};
 impl<P: Primitive> Grid<P> {
     /// A grid with the default options ([`GridOptions::default`]).
     pub fn build(prims: &[P]) -> Self {
-        Self::with_options(prims, GridOptions::default())
+        Self::build_with(prims, &GridOptions::default())
     }
 
     /// A grid with the given options; see [`GridOptions`] for how the resolution is chosen.
-    pub fn with_options(prims: &[P], options: GridOptions) -> Self {
+    pub fn build_with(prims: &[P], options: &GridOptions) -> Self {
         Self::build_observed(prims, options, &mut ())
     }
 
@@ -30,7 +30,7 @@ impl<P: Primitive> Grid<P> {
     /// kept aside (see [`Grid::unplaced`]).
     pub fn build_observed<O: Observer<P::Point>>(
         prims: &[P],
-        options: GridOptions,
+        options: &GridOptions,
         observer: &mut O,
     ) -> Self {
         let (bounds, unplaced) = placeable_bounds(prims);
@@ -51,7 +51,7 @@ impl<P: Primitive> Grid<P> {
             cell_prims: Vec::new(),
             spare: 0,
             unplaced,
-            options,
+            options: *options,
         };
         if grid.cell_count() == 0 {
             return grid;

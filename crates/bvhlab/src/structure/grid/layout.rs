@@ -9,7 +9,7 @@ use crate::{BoundingVolume, Primitive, Vector};
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct GridOptions {
     /// Cells per primitive, λ in Cleary and Wyvill's rule (see
-    /// [`Grid::with_options`]): about `density · n` cells in all. pbrt-v1 uses 3.
+    /// [`Grid::build_with`]): about `density · n` cells in all. pbrt-v1 uses 3.
     pub density: f32,
     /// Cells per axis, overriding the automatic choice (entries beyond the dimension are
     /// ignored; 0 counts as 1). Axes along which the scene is flat always get one cell.
@@ -36,7 +36,7 @@ impl Default for GridOptions {
 /// triangle"); queries test it once each (mailboxing).
 ///
 /// One implementation for 2D (segments, points) and 3D (triangles, points). Build with
-/// [`Grid::build`] or [`Grid::with_options`]; query through
+/// [`Grid::build`] or [`Grid::build_with`]; query through
 /// [`SpatialIndex`](crate::SpatialIndex).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Grid<P: Primitive> {

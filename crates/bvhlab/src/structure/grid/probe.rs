@@ -139,7 +139,7 @@ impl<'a, P: Primitive> NearestProbe<'a, P> {
             return;
         }
         self.cost.prim_tests += 1;
-        let q = self.prims[i as usize].closest_point(self.point);
+        let q = self.prims[i as usize].project_point(self.point);
         let d = (q - self.point).length();
         observer.on(Event::PrimitiveTest {
             prim: i,

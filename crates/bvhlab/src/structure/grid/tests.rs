@@ -61,9 +61,9 @@ fn rings_cover_every_cell_once() {
 #[test]
 fn a_diagonal_is_listed_only_where_it_touches() {
     let diagonal = Segment2::new(Vec2::ZERO, Vec2::splat(4.0));
-    let grid = Grid::with_options(
+    let grid = Grid::build_with(
         &[diagonal],
-        GridOptions {
+        &GridOptions {
             resolution: Some([4, 4, 1]),
             ..GridOptions::default()
         },

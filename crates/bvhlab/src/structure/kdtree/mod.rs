@@ -48,7 +48,7 @@ use crate::{Primitive, Ray, Vector};
 /// let walls: Vec<Segment2> = (0..10)
 ///     .map(|i| Segment2::new(Vec2::new(i as f32, -1.0), Vec2::new(i as f32, 1.0)))
 ///     .collect();
-/// let tree = KdTree::with_options(&walls, &KdTreeOptions::median(AxisRule::LongestAxis));
+/// let tree = KdTree::build_with(&walls, &KdTreeOptions::median(AxisRule::LongestAxis));
 /// tree.validate()?;
 /// let ray = Ray2::new(Vec2::new(2.5, 0.0), Vec2::X)?;
 /// let hit = tree.ray_first_hit(&ray, f32::INFINITY).expect("the wall at x = 3");
@@ -68,11 +68,11 @@ impl<P: Primitive> KdTree<P> {
     /// Builds the tree with [`KdTreeOptions::for_primitives`]: the SAH builder over segments
     /// and triangles, the median builder with small leaves over points.
     pub fn build(prims: &[P]) -> Self {
-        Self::with_options(prims, &KdTreeOptions::for_primitives(prims))
+        Self::build_with(prims, &KdTreeOptions::for_primitives(prims))
     }
 
     /// Builds the tree with the given options.
-    pub fn with_options(prims: &[P], options: &KdTreeOptions) -> Self {
+    pub fn build_with(prims: &[P], options: &KdTreeOptions) -> Self {
         Self::build_observed(prims, options, &mut ())
     }
 

@@ -17,11 +17,12 @@
 //! [`Event::NewBest`] with the primitive's distance when it enters the k nearest.
 
 use super::{PlaneNode, PlaneTree, PointOfTree, ROOT, SLACK, magnitude, node_id};
+use crate::PointQuery;
 use crate::structure::{
     Event, Mailbox, Nearest, NearestSet, Observer, PrimitiveResult, PruneAt, PruneReason,
     QueryCost, Traced,
 };
-use crate::volume::{Aabb, BoundingVolume};
+use crate::volume::Aabb;
 use crate::{Primitive, Vector};
 
 /// A subtree waiting on the stack, with its box and the distance to it.
@@ -156,7 +157,7 @@ fn test_leaf<P: Primitive, O: Observer<P::Point>>(
             continue;
         }
         cost.prim_tests += 1;
-        let q = prims[prim as usize].closest_point(point);
+        let q = prims[prim as usize].project_point(point);
         let d = (q - point).length();
         observer.on(Event::PrimitiveTest {
             prim,

@@ -10,6 +10,7 @@
 //! `AlreadyTested`).
 
 use super::{PlaneNode, PlaneTree, PointOfTree, ROOT, SLACK, magnitude, node_id};
+use crate::PointQuery;
 use crate::Vector;
 use crate::structure::{
     Event, Mailbox, Observer, PrimitiveResult, PruneAt, PruneReason, QueryCost, RangeShape, Traced,

@@ -128,11 +128,11 @@ pub(super) fn cube_around<V: Vector>(b: &Aabb<V>) -> Aabb<V> {
 impl<P: Primitive> Orthtree<P> {
     /// A tree with the default options ([`OrthtreeOptions::default`]).
     pub fn build(prims: &[P]) -> Self {
-        Self::with_options(prims, OrthtreeOptions::default())
+        Self::build_with(prims, &OrthtreeOptions::default())
     }
 
     /// A tree with the given options.
-    pub fn with_options(prims: &[P], options: OrthtreeOptions) -> Self {
+    pub fn build_with(prims: &[P], options: &OrthtreeOptions) -> Self {
         Self::build_observed(prims, options, &mut ())
     }
 
@@ -140,7 +140,7 @@ impl<P: Primitive> Orthtree<P> {
     /// [`Event::BuildSplit`]s (one per mid-plane, with the primitives reaching each side) for
     /// every split and [`Event::BuildLeaf`] for every leaf.
     ///
-    /// A cell becomes a leaf when it holds at most `max_leaf_size` primitives, is at
+    /// A cell becomes a leaf when it holds at most `leaf_size` primitives, is at
     /// `max_depth`, or when the split does not pay (it would only copy the
     /// primitives, or cost more than it saves by the surface area heuristic), which keeps
     /// inseparable input (identical primitives, many sharing a point) from splitting all the
@@ -149,11 +149,11 @@ impl<P: Primitive> Orthtree<P> {
     /// ([`Orthtree::unplaced`]).
     pub fn build_observed<O: Observer<P::Point>>(
         prims: &[P],
-        options: OrthtreeOptions,
+        options: &OrthtreeOptions,
         observer: &mut O,
     ) -> Self {
         let options = OrthtreeOptions {
-            max_leaf_size: options.max_leaf_size.max(1),
+            leaf_size: options.leaf_size.max(1),
             max_depth: options.max_depth.min(MAX_DEPTH),
         };
         let (bounds, unplaced) = placeable_bounds(prims);
@@ -181,7 +181,7 @@ impl<P: Primitive> Orthtree<P> {
                 depth: depth as u32,
                 prims: list.len() as u32,
             });
-            let split = (list.len() > options.max_leaf_size && depth < options.max_depth)
+            let split = (list.len() > options.leaf_size && depth < options.max_depth)
                 .then(|| tree.partition(&list, &cell))
                 .filter(|(children, _)| split_pays::<P::Point>(list.len(), children));
             let Some((children, sides)) = split else {

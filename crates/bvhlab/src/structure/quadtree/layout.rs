@@ -15,7 +15,7 @@ pub const MAX_DEPTH: usize = 40;
 pub struct OrthtreeOptions {
     /// A cell holding more primitives than this is split into 2^D children (unless it is at
     /// `max_depth`, or splitting would only copy its primitives). At least 1.
-    pub max_leaf_size: usize,
+    pub leaf_size: usize,
     /// Cells at this depth become leaves whatever they hold (the root is depth 0). Clamped
     /// to [`MAX_DEPTH`].
     pub max_depth: usize,
@@ -24,7 +24,7 @@ pub struct OrthtreeOptions {
 impl Default for OrthtreeOptions {
     fn default() -> Self {
         Self {
-            max_leaf_size: 8,
+            leaf_size: 8,
             max_depth: 10,
         }
     }
@@ -62,7 +62,7 @@ impl Node {
 /// (eight) equal children until each cell holds few primitives. Each primitive is listed in
 /// every leaf it shares a point with, so a primitive crossing a split plane is duplicated,
 /// and queries test it once (mailboxing). Build with [`Orthtree::build`] or
-/// [`Orthtree::with_options`]; query through [`SpatialIndex`](crate::SpatialIndex).
+/// [`Orthtree::build_with`]; query through [`SpatialIndex`](crate::SpatialIndex).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Orthtree<P: Primitive> {
     pub(super) prims: Vec<P>,

@@ -1,4 +1,4 @@
-//! The binned-SAH build of a box tree in one go, for [`Bvh::with_options`]: the tree the
+//! The binned-SAH build of a box tree in one go, for [`Bvh::build_with`]: the tree the
 //! resumable [`Builder`](super::Builder) makes, bit for bit, at about half its cost.
 //!
 //! The resumable builder keeps each node's work in a [`Stage`](super::Stage) that can stop
@@ -220,7 +220,7 @@ fn make_node<B: NodeVolume>(
     if n <= 1 || job.depth >= options.depth_limit() {
         return;
     }
-    let small = n <= options.leaf_size();
+    let small = n <= options.leaf_limit();
     let items = &mut items[job.start..job.end];
     let cheapest = binner.cheapest::<B::Point>(&job.boxes.bounds, &job.boxes.centroids, items);
     let (split, left, right) = match cheapest {

@@ -2,7 +2,7 @@
 //! WebAssembly, and a million-triangle mesh must build without freezing the page. The app
 //! calls [`BvhBuild::step`] with a budget every frame and draws [`BuildProgress::fraction`].
 //!
-//! The slices run the one builder that [`Bvh::with_options`] runs in one go (`build.rs`), so
+//! The slices run the one builder that [`Bvh::build_with`] runs in one go (`build.rs`), so
 //! the tree is the same to the bit whatever the budgets were: the same nodes in the same
 //! order, the same volumes, the same leaf order.
 
@@ -71,7 +71,7 @@ impl BuildProgress {
 /// A [`Bvh`] build that can be run in slices of bounded work ([`step`](Self::step)), for a
 /// single-threaded caller that must stay responsive. It owns its input.
 ///
-/// The tree is exactly the one [`Bvh::with_options`] builds from the same input and options,
+/// The tree is exactly the one [`Bvh::build_with`] builds from the same input and options,
 /// whatever the budgets of the steps.
 ///
 /// ```
@@ -93,7 +93,7 @@ impl BuildProgress {
 ///     last = progress.fraction();
 /// }
 /// let tree: ObbTree<Triangle3> = build.finish();
-/// assert_eq!(tree, ObbTree::with_options(&tris, &BvhOptions::default()));
+/// assert_eq!(tree, ObbTree::build_with(&tris, &BvhOptions::default()));
 /// ```
 pub struct BvhBuild<B, P: Primitive> {
     prims: Vec<P>,

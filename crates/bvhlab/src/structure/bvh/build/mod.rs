@@ -63,24 +63,19 @@ pub(super) struct Split {
     pub cost: Option<f32>,
 }
 
-/// Builds a tree in one go, reporting every node to `observer` and, when `log` is given,
-/// appending every split decision to it.
-pub(super) fn build<B, P, O>(
-    prims: &[P],
-    options: &BvhOptions,
-    observer: &mut O,
-    log: Option<&mut Vec<SplitRecord>>,
-) -> Bvh<B, P>
+/// Builds a tree in one go, reporting every node to `observer` and, when it
+/// [wants them](Observer::wants_splits), every split decision.
+pub(super) fn build<B, P, O>(prims: &[P], options: &BvhOptions, observer: &mut O) -> Bvh<B, P>
 where
     B: NodeVolume<Point = P::Point>,
     P: Primitive,
     O: Observer<P::Point>,
 {
-    let mut builder = Builder::new(prims.len(), *options, Fits::Whole, log.is_some());
+    let mut builder = Builder::new(prims.len(), *options, Fits::Whole, observer.wants_splits());
     builder.run(prims, usize::MAX, observer);
     let (bvh, records) = builder.into_bvh(prims.to_vec());
-    if let Some(log) = log {
-        log.extend(records);
+    for record in &records {
+        observer.on_split(record);
     }
     bvh
 }

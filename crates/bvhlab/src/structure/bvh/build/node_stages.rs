@@ -163,7 +163,7 @@ where
         };
         match self.options.method {
             SplitMethod::SpatialMedian | SplitMethod::ObjectMedian
-                if n <= self.options.leaf_size() =>
+                if n <= self.options.leaf_limit() =>
             {
                 self.leaf(&node, observer)
             }
@@ -231,7 +231,7 @@ where
         record.chosen_bin = Some(curve.best);
         let n = node.len();
         // Splitting does not pay: a leaf, if it is small enough.
-        if n <= self.options.leaf_size() && curve.best_cost >= n as f32 {
+        if n <= self.options.leaf_limit() && curve.best_cost >= n as f32 {
             record.made_leaf = true;
             self.log_decision(record, &sah_split(&curve), n);
             return self.leaf(&node, observer);
@@ -253,7 +253,7 @@ where
         record: SplitRecord,
         observer: &mut O,
     ) -> NodeStage<P> {
-        if node.len() <= self.options.leaf_size() {
+        if node.len() <= self.options.leaf_limit() {
             self.leaf(&node, observer)
         } else {
             fall_back(node, record)

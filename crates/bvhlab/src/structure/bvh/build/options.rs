@@ -52,7 +52,7 @@ pub struct BvhOptions {
     /// A node with more primitives than this is always split (unless it is at `max_depth`
     /// or its primitives cannot be told apart); one with at most this many becomes a leaf
     /// (median methods) or is split only when the SAH says it pays. At least 1.
-    pub max_leaf_size: usize,
+    pub leaf_size: usize,
     /// Nodes at this depth become leaves whatever their size. Clamped to [`MAX_DEPTH`].
     pub max_depth: usize,
     /// SAH bins per axis, clamped to `2..=64`; pbrt-v4 uses 12, Wald 16-32.
@@ -65,7 +65,7 @@ impl Default for BvhOptions {
     fn default() -> Self {
         Self {
             method: SplitMethod::BinnedSah,
-            max_leaf_size: 4,
+            leaf_size: 4,
             max_depth: MAX_DEPTH,
             bins: 16,
             sphere_fit: SphereFit::Ritter,
@@ -83,9 +83,9 @@ impl BvhOptions {
         }
     }
 
-    /// `max_leaf_size`, at least 1.
-    pub(in crate::structure::bvh) fn leaf_size(&self) -> usize {
-        self.max_leaf_size.max(1)
+    /// `leaf_size`, at least 1.
+    pub(in crate::structure::bvh) fn leaf_limit(&self) -> usize {
+        self.leaf_size.max(1)
     }
 
     /// `max_depth`, at most [`MAX_DEPTH`].

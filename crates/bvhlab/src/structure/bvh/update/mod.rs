@@ -47,13 +47,13 @@ where
     ///
     /// The primitive goes where it raises the tree's SAH cost least (a branch-and-bound
     /// search, `update/search.rs`): into a leaf that holds fewer than
-    /// [`max_leaf_size`](super::BvhOptions::max_leaf_size) primitives, or into a leaf of
+    /// [`leaf_size`](super::BvhOptions::leaf_size) primitives, or into a leaf of
     /// its own beside any node, under a new parent. A full leaf is never grown; the search
     /// puts the primitive beside it instead, which splits it into a new inner node. Then,
     /// on the way back up, each ancestor may swap a child with a grandchild when that
     /// shrinks the node between them (a tree rotation, `update/rotate.rs`). The tree stays
     /// within [`max_depth`](super::BvhOptions::max_depth): only when no new leaf fits there
-    /// does a leaf grow past `max_leaf_size`, as the builds make leaves of any size at that
+    /// does a leaf grow past `leaf_size`, as the builds make leaves of any size at that
     /// depth. The volumes above the change are fitted again, so
     /// [`validate`](crate::SpatialIndex::validate) holds and every query answers as brute
     /// force on the primitives now held.
@@ -187,7 +187,7 @@ where
         let mut limits = Limits {
             depth: self.options.depth_limit(),
             heights: None,
-            leaf_size: self.options.leaf_size(),
+            leaf_size: self.options.leaf_limit(),
             full_leaves: false,
         };
         let found = self.cheapest_place(item, &limits)?;

@@ -12,7 +12,7 @@
 //! surface area in 3D and the perimeter in 2D, as in [`Stats::sah_cost`].
 //!
 //! Leaves hold several primitives here, so a single primitive has a second kind of place:
-//! into a leaf with room (fewer than `max_leaf_size`), which turns the leaf's cost
+//! into a leaf with room (fewer than `leaf_size`), which turns the leaf's cost
 //! `c · A(L)` into `(c + 1) · A(L ∪ x)`. A new leaf beside `s` costs `A(s ∪ x) + A(x)`
 //! (the parent and the leaf itself); the two kinds are compared on that one scale, so a
 //! primitive inside a leaf's box joins it and one far away gets a leaf of its own.

@@ -4,6 +4,7 @@
 use glam::Vec4;
 
 use super::{GROW, NodeVolume, PreparedRange, PreparedRay, SLACK, magnitude};
+use crate::PointQuery;
 use crate::structure::RangeShape;
 use crate::structure::bvh::BvhOptions;
 use crate::volume::{Aabb, BoundingVolume};
@@ -58,7 +59,7 @@ impl<V: Vector> NodeVolume for Aabb<V> {
     }
 
     /// The squared distance from `point` to the nearest point of the box: the value whose
-    /// square root is [`distance`](BoundingVolume::distance) (`inf` for an empty box, as
+    /// square root is [`distance`](crate::PointQuery::distance) (`inf` for an empty box, as
     /// the distance is), so the walks that compare squares prune exactly where rounding
     /// allows.
     ///

@@ -2,6 +2,7 @@
 //! Hierarchical Structure for Rapid Interference Detection", SIGGRAPH 1996).
 
 use super::{GROW, HUGE, NodeVolume, PreparedRange, PreparedRay, growth, magnitude};
+use crate::PointQuery;
 use crate::Vector;
 use crate::structure::RangeShape;
 use crate::structure::bvh::BvhOptions;

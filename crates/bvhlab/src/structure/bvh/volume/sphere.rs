@@ -1,6 +1,7 @@
 //! Spheres as node volumes: the sphere tree (lecture §3, "Sphere trees and AABB trees").
 
 use super::{GROW, HUGE, NodeVolume, PreparedRange, PreparedRay, growth, magnitude};
+use crate::PointQuery;
 use crate::Vector;
 use crate::structure::RangeShape;
 use crate::structure::bvh::{BvhOptions, SphereFit};

@@ -154,7 +154,7 @@ impl<V: Vector> Best<V> {
     ) -> bool {
         let mut changed = false;
         for (prim, &id) in prims.iter().zip(ids) {
-            let q = prim.closest_point(point);
+            let q = prim.project_point(point);
             let distance = (q - point).length();
             let id = id as usize;
             if distance < self.distance || (distance == self.distance && id < self.prim) {

@@ -34,7 +34,7 @@ where
     /// The slides' `intersect(bvNode, ray, t)`, literally: recursive, left child then right
     /// child, no near-first order, no pruning by the best hit so far. Answers the first hit
     /// with `0 <= t <= t_max`, exactly as
-    /// [`ray_first_hit`](crate::structure::SpatialIndex::ray_first_hit) does, at a higher
+    /// [`ray_first_hit`](crate::RayCast::ray_first_hit) does, at a higher
     /// cost.
     ///
     /// Events, per call, in the recursion's order: `EnterNode`, then `RayBoundTest` (the
@@ -77,7 +77,7 @@ where
     /// The slides' `minDistance(bvNode, point, currentMin)`, literally: visits both children
     /// of every node (the slide tests no bounding volume), and leaves compute their
     /// primitives' distances. Answers the nearest primitive exactly as
-    /// [`closest_point`](crate::structure::SpatialIndex::closest_point) does, after
+    /// [`closest_point`](crate::PointQuery::closest_point) does, after
     /// visiting every node and testing every primitive.
     ///
     /// Events, per call, in the recursion's order: `EnterNode`; a leaf then reports a
@@ -325,7 +325,7 @@ where
             .zip(&bvh.leaf_ids[range])
         {
             self.cost.prim_tests += 1;
-            let point = prim.closest_point(self.point);
+            let point = prim.project_point(self.point);
             let distance = (point - self.point).length();
             self.observer.on(Event::PrimitiveTest {
                 prim: id,

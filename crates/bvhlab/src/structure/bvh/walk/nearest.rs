@@ -82,7 +82,7 @@ where
                     .iter()
                     .zip(&self.leaf_ids[range])
                 {
-                    let q = prim.closest_point(point);
+                    let q = prim.project_point(point);
                     let d = (q - point).length();
                     observer.on(Event::PrimitiveTest {
                         prim: id,

@@ -29,7 +29,7 @@ use crate::{Primitive, Ray, Vector};
 impl<P: Primitive> Bvh4<P> {
     /// Some hit with `0 <= t <= t_max`, not necessarily the first (none for a NaN `t_max`):
     /// the walk stops at the first primitive it finds hit. It finds one exactly when the
-    /// binary tree's [`ray_any_hit`](crate::structure::SpatialIndex::ray_any_hit) (and
+    /// binary tree's [`ray_any_hit`](crate::RayCast::ray_any_hit) (and
     /// brute force) does, and the hit is one they also report, with the same `t`, `u` and
     /// `v`; it may be another primitive than theirs.
     pub fn ray_any_hit(&self, ray: &Ray<P::Point>, t_max: f32) -> Option<Hit> {

@@ -72,7 +72,7 @@ impl<P: Primitive> Bvh4<P> {
                 bits &= bits - 1;
                 let start = node.child[lane] as usize;
                 for slot in start..start + node.count[lane] as usize {
-                    let q = self.leaf_prims[slot].closest_point(point);
+                    let q = self.leaf_prims[slot].project_point(point);
                     let distance = (q - point).length();
                     if best.offer(self.leaf_ids[slot] as usize, q, distance) {
                         reach_sq = reach_squared(best.bound() * GROW + slack);

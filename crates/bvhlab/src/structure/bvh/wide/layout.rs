@@ -135,15 +135,15 @@ impl<P: Primitive> Bvh4<P> {
     /// Builds the binned-SAH AABB tree over `prims` with the default options and collapses
     /// it.
     pub fn build(prims: &[P]) -> Self {
-        Self::with_options(prims, &BvhOptions::default())
+        Self::build_with(prims, &BvhOptions::default())
     }
 
     /// Builds the AABB tree over `prims` with `options` and collapses it: the tree
-    /// `Bvh4::from_bvh(&AabbTree::with_options(prims, options))` makes, without the binary
+    /// `Bvh4::from_bvh(&AabbTree::build_with(prims, options))` makes, without the binary
     /// tree's copies of the input and of the leaf order.
-    pub fn with_options(prims: &[P], options: &BvhOptions) -> Self {
+    pub fn build_with(prims: &[P], options: &BvhOptions) -> Self {
         if options.method != SplitMethod::BinnedSah {
-            return Self::from_bvh(&Bvh::with_options(prims, options));
+            return Self::from_bvh(&Bvh::build_with(prims, options));
         }
         let parts = build_sah_box_parts::<Aabb<P::Point>, P>(prims, options);
         let (nodes, depth) = collapse(&parts.nodes);

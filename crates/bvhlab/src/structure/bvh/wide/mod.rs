@@ -23,6 +23,7 @@ mod any_all_hits;
 mod k_nearest;
 mod layout;
 mod nearest;
+mod query_traits;
 mod range;
 mod ray;
 mod refit;

@@ -69,7 +69,7 @@ pub(super) fn bound_lanes<const DIM: usize>(
 impl<P: Primitive> Bvh4<P> {
     /// The primitive nearest to `point` (ties by the lower index), none for a non-finite
     /// point: what the binary tree's
-    /// [`closest_point`](crate::structure::SpatialIndex::closest_point) answers, bit for bit.
+    /// [`closest_point`](crate::PointQuery::closest_point) answers, bit for bit.
     pub fn closest_point(&self, point: P::Point) -> Option<Nearest<P::Point>> {
         if self.nodes.is_empty() || !point.is_finite() {
             return None;

@@ -105,7 +105,7 @@ pub(super) fn enter_lanes<const DIM: usize>(
 impl<P: Primitive> Bvh4<P> {
     /// The first hit with `0 <= t <= t_max` (none for a NaN `t_max`), ties broken by the
     /// lower primitive index: what the binary tree's
-    /// [`ray_first_hit`](crate::structure::SpatialIndex::ray_first_hit) answers, bit for bit.
+    /// [`ray_first_hit`](crate::RayCast::ray_first_hit) answers, bit for bit.
     pub fn ray_first_hit(&self, ray: &Ray<P::Point>, t_max: f32) -> Option<Hit> {
         if self.nodes.is_empty() || t_max.is_nan() {
             return None;

@@ -1,0 +1,26 @@
+//! [`Bvh4`] answers the questions every volume, primitive and structure answers
+//! ([`RayCast`], [`PointQuery`]) with its own walks, so code written against the traits takes
+//! the fast tree as it takes any other.
+
+use super::Bvh4;
+use crate::{Hit, Nearest, PointQuery, Primitive, Ray, RayCast};
+
+impl<P: Primitive> RayCast<P::Point> for Bvh4<P> {
+    #[inline]
+    fn ray_first_hit(&self, ray: &Ray<P::Point>, t_max: f32) -> Option<Hit> {
+        // The inherent method (inherent methods come before trait methods in a path).
+        Bvh4::ray_first_hit(self, ray, t_max)
+    }
+
+    #[inline]
+    fn ray_any_hit(&self, ray: &Ray<P::Point>, t_max: f32) -> Option<Hit> {
+        Bvh4::ray_any_hit(self, ray, t_max)
+    }
+}
+
+impl<P: Primitive> PointQuery<P::Point> for Bvh4<P> {
+    #[inline]
+    fn closest_point(&self, point: P::Point) -> Option<Nearest<P::Point>> {
+        Bvh4::closest_point(self, point)
+    }
+}
