@@ -20,6 +20,8 @@ step "tests (native)"
 # find an adapter, not skip.
 BVHLAB_REQUIRE_GPU=1 cargo test --workspace --lib --bins --tests
 cargo test --workspace --doc
+# The core's optional features, in one extra build of the core: batch queries on every core.
+cargo test -p bvhlab --features parallel --test batch_queries
 
 step "fuzzing (libFuzzer on stable Rust: mesh files, scene files, share links; 20 s each)"
 # Builds fuzz/ instrumented (cargo and the C++ compiler only; about 10 minutes cold on 2
@@ -33,6 +35,7 @@ cargo bench --workspace --exclude bvhlab-app --no-run
 
 step "lints (native, then the core and the lab for wasm32)"
 cargo clippy --workspace --all-targets -- -D warnings
+cargo clippy -p bvhlab --all-features --all-targets -- -D warnings
 cargo clippy -p bvhlab -p bvhlab-meshio -p bvhlab-app --target wasm32-unknown-unknown -- -D warnings
 
 step "docs"

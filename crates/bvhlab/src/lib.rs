@@ -5,9 +5,13 @@
 //! knows nothing of drawing, and every answer it gives is exact or says why it cannot be.
 //!
 //! - Primitives: [`Ray2`]/[`Ray3`], [`Segment2`], [`Triangle3`], points as glam vectors.
-//! - Bounding volumes, each fitted to a point set and each answering the queries of
-//!   [`prelude::BoundingVolume`] (ray interval, distance, containment, overlap, merge,
-//!   measures): [`Aabb2`]/[`Aabb3`], [`Sphere2`]/[`Sphere3`] (the lecture's centroid fit,
+//! - One query API: one trait per question, answered alike by volumes, primitives and
+//!   structures ([`queries`]): [`RayCast`] (`ray_first_hit`, `ray_any_hit`) and
+//!   [`PointQuery`] (`closest_point`, `distance`). Builds take their options the same way
+//!   everywhere (`Tree::build_with(&prims, &options)`, the leaf option is `leaf_size`).
+//! - Bounding volumes, each fitted to a point set and each answering [`RayCast`],
+//!   [`PointQuery`] and the queries of [`prelude::BoundingVolume`] (ray interval,
+//!   containment, overlap, merge, measures): [`Aabb2`]/[`Aabb3`], [`Sphere2`]/[`Sphere3`] (the lecture's centroid fit,
 //!   Ritter's and Welzl's), [`Obb2`]/[`Obb3`] (PCA, with the separating-axis test), and
 //!   [`ConvexHull2`]/[`ConvexHull3`].
 //!

@@ -59,6 +59,25 @@ pub trait RayCast<V: Vector> {
     fn intersects_ray(&self, ray: &Ray<V>, t_max: f32) -> bool {
         self.ray_any_hit(ray, t_max).is_some()
     }
+
+    /// [`ray_first_hit`](Self::ray_first_hit) of each ray, in the rays' order: the same
+    /// answers as one call per ray. With the `parallel` feature the rays are split across
+    /// threads (rayon's work stealing).
+    fn ray_first_hits(&self, rays: &[Ray<V>], t_max: f32) -> Vec<Option<Hit>>
+    where
+        Self: Sync,
+    {
+        batch(rays, |ray| self.ray_first_hit(ray, t_max))
+    }
+
+    /// [`ray_any_hit`](Self::ray_any_hit) of each ray, in order (shadow rays); parallel as
+    /// [`ray_first_hits`](Self::ray_first_hits).
+    fn ray_any_hits(&self, rays: &[Ray<V>], t_max: f32) -> Vec<Option<Hit>>
+    where
+        Self: Sync,
+    {
+        batch(rays, |ray| self.ray_any_hit(ray, t_max))
+    }
 }
 
 /// The point of the thing nearest to a query point, and its distance.
@@ -80,6 +99,15 @@ pub trait PointQuery<V: Vector> {
             .map_or(f32::INFINITY, |nearest| nearest.distance)
     }
 
+    /// [`closest_point`](Self::closest_point) of each point, in order: the same answers as
+    /// one call per point; with the `parallel` feature, split across threads.
+    fn closest_points(&self, points: &[V]) -> Vec<Option<Nearest<V>>>
+    where
+        Self: Sync,
+    {
+        batch(points, |&point| self.closest_point(point))
+    }
+
     /// [`closest_point`](Self::closest_point), refusing a non-finite query point.
     ///
     /// # Errors
@@ -96,6 +124,20 @@ pub trait PointQuery<V: Vector> {
     #[inline]
     fn checked_distance(&self, point: V) -> Result<f32, GeometryError> {
         check_finite(|| "query point".into(), point).map(|p| self.distance(p))
+    }
+}
+
+/// One answer per query, in order: on every core with the `parallel` feature. Queries are
+/// independent and read-only, so splitting them cannot change an answer.
+fn batch<Q: Sync, A: Send>(queries: &[Q], answer: impl Fn(&Q) -> A + Sync + Send) -> Vec<A> {
+    #[cfg(feature = "parallel")]
+    {
+        use rayon::prelude::*;
+        queries.par_iter().map(answer).collect()
+    }
+    #[cfg(not(feature = "parallel"))]
+    {
+        queries.iter().map(answer).collect()
     }
 }
 

@@ -1,9 +1,9 @@
 //! Spatial data structures (lecture §3) and the one query interface they all answer.
 //!
-//! Every structure implements [`SpatialIndex`]: ray first hit, any hit and all hits, k
-//! nearest (closest point for k = 1), range and collision queries, each in a plain form and in
-//! an `_observed` form that reports every step to an [`Observer`] and returns its
-//! [`QueryCost`]. [`BruteForce`] answers the same queries by testing every primitive: it is the
+//! Every structure answers [`RayCast`] (ray first hit, any hit) and [`PointQuery`] (closest
+//! point, distance), as volumes and primitives do, and [`SpatialIndex`]: all hits, k nearest,
+//! range and collision queries, each in a plain form and in an `_observed` form (first and
+//! any hit too) that reports every step to an [`Observer`] and returns its [`QueryCost`]. [`BruteForce`] answers the same queries by testing every primitive: it is the
 //! reference the tests compare against and the baseline the lab shows beside each structure.
 //!
 //! ## Where each structure lives
