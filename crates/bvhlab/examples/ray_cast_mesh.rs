@@ -5,10 +5,7 @@
 //!
 //! Run: `cargo run -p bvhlab --example ray_cast_mesh -- [MESH.obj]`. Without a file it casts
 //! at a sphere of 528 triangles that it writes as OBJ text itself.
-#![expect(
-    clippy::print_stdout,
-    reason = "an example that prints what it found"
-)]
+#![expect(clippy::print_stdout, reason = "an example that prints what it found")]
 
 use std::error::Error;
 
@@ -23,7 +20,10 @@ fn main() -> Result<(), Box<dyn Error>> {
             let mesh = Mesh::from_obj(&bytes).map_err(|e| format!("{path}: {e}"))?;
             (path, mesh)
         }
-        None => ("a sphere".to_owned(), Mesh::from_obj(uv_sphere_obj(24, 12).as_bytes())?),
+        None => (
+            "a sphere".to_owned(),
+            Mesh::from_obj(uv_sphere_obj(24, 12).as_bytes())?,
+        ),
     };
     let image = cast_camera_rays(&mesh, 64, 32)?;
     println!("{name}: {} triangles", mesh.len());
@@ -130,7 +130,11 @@ impl Image {
         for (i, (ray, pixel)) in self.rays.iter().zip(&self.pixels).enumerate() {
             let shade = pixel.map_or(' ', |(_, normal)| {
                 // Seen from behind, a surface shows its other side: face the normal to the eye.
-                let normal = if normal.dot(ray.dir()) > 0.0 { -normal } else { normal };
+                let normal = if normal.dot(ray.dir()) > 0.0 {
+                    -normal
+                } else {
+                    normal
+                };
                 let lambert = normal.dot(light).max(0.0);
                 RAMP[(lambert * (RAMP.len() - 1) as f32).round() as usize] as char
             });
