@@ -1,8 +1,8 @@
 //! Closest points on a triangle mesh: for each query point, the nearest point of the
-//! surface, which triangle it lies on and how far it is, by branch and bound in a
-//! [`Bvh4`] (a box farther than the best distance so far is skipped; Gottschalk, Lin and
-//! Manocha's bounding-volume idea as three-mesh-bvh's `closestPointToPoint` uses it). Also
-//! every triangle within a distance (a range query with a ball).
+//! surface, which triangle it lies on and how far it is, by branch and bound in a [`Bvh4`]
+//! (the lecture's BVH distance query, §3: a box farther than the best distance so far
+//! cannot hold anything nearer and is skipped). Also every triangle within a distance (a
+//! range query with a ball).
 //!
 //! Run: `cargo run -p bvhlab --example closest_points`. The mesh is a torus made in code
 //! with [`Mesh::from_indexed`], the constructor for meshes that do not come from a file.

@@ -1,6 +1,6 @@
 //! A primitive of your own: balls (solid spheres) that implement [`Primitive`], so that every
 //! structure indexes them and answers ray, nearest-point, range and collision queries over
-//! them. The trait's documentation (`src/primitive/mod.rs`) states the contract these
+//! them. The trait's documentation (`crates/bvhlab/src/primitive/mod.rs`) states the contract these
 //! methods keep; [`check_enclosed_by_vertices`] checks its first clause, the one a ball
 //! most easily breaks. The ray test is the quadratic of Shirley and Marschner's
 //! *Fundamentals of Computer Graphics*, §4.4.1.
@@ -124,7 +124,8 @@ fn main() -> Result<(), Box<dyn Error>> {
         check_enclosed_by_vertices(ball)?;
     }
 
-    // A sphere tree over spheres, and the 4-wide box tree: both take any `Primitive`.
+    // A sphere tree (its nodes fitted to the vertices) and the 4-wide box tree: both take
+    // any `Primitive`.
     let sphere_tree = SphereTree::<Ball>::build(&balls);
     sphere_tree.validate()?;
     let fast_tree = Bvh4::build(&balls);
