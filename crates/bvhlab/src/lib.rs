@@ -48,6 +48,177 @@
 //! | splitting by arbitrary planes (autopartition along the primitives' own planes) | [`BspTree`] | what the lecture's BSP trees teach (front-to-back order by planes); the slowest build and queries here (first hits 29 times [`Bvh4`]'s time on the bunny). |
 //! | regular, adaptive subdivision of space: cells halved on every axis | [`Orthtree`] ([`Quadtree2`], [`Octree3`]) | cells of fixed shape that adapt to density; first hits 15 times [`Bvh4`]'s time on the bunny, closest points 3.7 times on 200k points. |
 //!
+//! ## Start here: one job, one example
+//!
+//! Each job below has a short doc-tested snippet here and a longer, commented program in
+//! `crates/bvhlab/examples/` that prints what it finds (`cargo run -p bvhlab --example
+//! NAME`) and runs as a test against [`BruteForce`], which tests every primitive. The
+//! pattern is always the same: build a structure once over a slice of primitives, then ask
+//! it many queries; answers name primitives by their index in that slice.
+//!
+//! - **Ray cast a mesh** (`examples/ray_cast_mesh.rs`: an OBJ file, a camera's rays,
+//!   normals interpolated at the hits). [`Mesh::from_obj`] reads the file; a hit's `u`,
+//!   `v` are its barycentric coordinates, which blend anything stored per vertex.
+//!
+//! ```
+//! use bvhlab::glam::Vec3;
+//! use bvhlab::prelude::*;
+//!
+//! // One square (two triangles) in the plane z = 0; for a file:
+//! // `Mesh::from_obj(&std::fs::read("bunny.obj")?)?`.
+//! let mesh = Mesh::from_obj(b"v 0 0 0\nv 2 0 0\nv 2 2 0\nv 0 2 0\nf 1 2 3 4\n")?;
+//! let tree = Bvh4::build(mesh.triangles());
+//! let ray = Ray3::new(Vec3::new(1.5, 0.5, 5.0), -Vec3::Z)?;
+//! let hit = tree.ray_first_hit(&ray, f32::INFINITY).expect("the ray crosses the square");
+//! assert_eq!(hit.t, 5.0);
+//! // `u` weighs corner b, `v` corner c: the same weights give the hit point.
+//! let tri = mesh.triangles()[hit.prim];
+//! let point = tri.a * (1.0 - hit.u - hit.v) + tri.b * hit.u + tri.c * hit.v;
+//! assert!(point.distance(ray.at(hit.t)) < 1e-6);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! - **Closest point on a mesh** (`examples/closest_points.rs`: a torus made with
+//!   [`Mesh::from_indexed`], nearest points and the triangles within a distance).
+//!
+//! ```
+//! use bvhlab::glam::Vec3;
+//! use bvhlab::prelude::*;
+//!
+//! let tris = [Triangle3::new(Vec3::ZERO, Vec3::X, Vec3::Y)];
+//! let tree = Bvh4::build(&tris);
+//! let nearest = tree.closest_point(Vec3::new(0.25, 0.25, 3.0)).expect("a non-empty tree");
+//! assert_eq!(nearest.prim, 0);
+//! assert_eq!(nearest.point, Vec3::new(0.25, 0.25, 0.0));
+//! assert_eq!(nearest.distance, 3.0);
+//! ```
+//!
+//! - **k nearest in a point cloud** (`examples/point_cloud_knn.rs`: 100k points, the k
+//!   nearest, ball and box ranges, and what each query cost). Points are primitives
+//!   (`Vec2` and `Vec3` implement [`Primitive`]): build any structure over a `&[Vec3]`;
+//!   [`KdTree`] is the textbook one, [`Bvh4`] the fastest here.
+//!
+//! ```
+//! use bvhlab::glam::Vec3;
+//! use bvhlab::prelude::*;
+//! use bvhlab::{KdTree, RangeShape};
+//!
+//! let points: Vec<Vec3> = (0..10).map(|i| Vec3::new(i as f32, 0.0, 0.0)).collect();
+//! let tree = KdTree::build(&points);
+//! let three = tree.k_nearest(Vec3::new(3.2, 1.0, 0.0), 3);
+//! assert_eq!(three.iter().map(|n| n.prim).collect::<Vec<_>>(), [3, 4, 2]); // nearest first
+//! let ball = RangeShape::Ball(Sphere3::new(Vec3::ZERO, 2.0));
+//! assert_eq!(tree.range(&ball), [0, 1, 2]);
+//! ```
+//!
+//! - **A primitive of your own** (`examples/custom_primitive.rs`: balls, their texture
+//!   coordinates at hits, a sphere tree and [`Bvh4`] over them). Implement [`Primitive`],
+//!   keeping the contract written on it;
+//!   [`check_enclosed_by_vertices`](primitive::check_enclosed_by_vertices) checks the clause
+//!   most easily broken (the vertices must enclose the whole primitive), and every BVH's
+//!   `validate()` runs it. Condensed:
+//!
+//! ```
+//! use bvhlab::glam::{BVec3, Vec3};
+//! use bvhlab::prelude::*;
+//! use bvhlab::primitive::check_enclosed_by_vertices;
+//! use bvhlab::structure::bvh::SphereTree;
+//!
+//! #[derive(Clone, Copy, Debug, PartialEq)]
+//! struct Ball {
+//!     center: Vec3,
+//!     radius: f32,
+//! }
+//!
+//! impl Primitive for Ball {
+//!     type Point = Vec3;
+//!     fn bounds(&self) -> Aabb3 {
+//!         Aabb3::new(self.center - self.radius, self.center + self.radius)
+//!     }
+//!     fn centroid(&self) -> Vec3 {
+//!         self.center
+//!     }
+//!     // The least t >= 0 with |origin + t dir - center| <= radius (0 from inside).
+//!     fn ray_hit(&self, ray: &Ray3) -> Option<f32> {
+//!         let (e, d) = (ray.origin() - self.center, ray.dir());
+//!         let (a, half_b) = (d.dot(d), e.dot(d));
+//!         let disc = half_b * half_b - a * (e.dot(e) - self.radius * self.radius);
+//!         let (enter, exit) = ((-half_b - disc.sqrt()) / a, (-half_b + disc.sqrt()) / a);
+//!         (disc >= 0.0 && exit >= 0.0).then(|| enter.max(0.0))
+//!     }
+//!     fn project_point(&self, p: Vec3) -> Vec3 {
+//!         self.center + (p - self.center).clamp_length_max(self.radius)
+//!     }
+//!     fn measure(&self) -> f32 {
+//!         4.0 / 3.0 * std::f32::consts::PI * self.radius.powi(3)
+//!     }
+//!     fn normal(&self) -> Vec3 {
+//!         Vec3::ZERO // no plane holds a ball
+//!     }
+//!     // Points whose hull holds the whole ball: its box's corners, not its centre alone.
+//!     fn vertices(&self) -> impl Iterator<Item = Vec3> {
+//!         let (low, high) = (self.center - self.radius, self.center + self.radius);
+//!         (0..8u32).map(move |i| {
+//!             Vec3::select(BVec3::new(i & 1 != 0, i & 2 != 0, i & 4 != 0), high, low)
+//!         })
+//!     }
+//!     fn intersects_aabb(&self, aabb: &Aabb3) -> bool {
+//!         aabb.distance(self.center) <= self.radius
+//!     }
+//!     fn intersects(&self, other: &Self) -> bool {
+//!         self.center.distance(other.center) <= self.radius + other.radius
+//!     }
+//! }
+//!
+//! let balls = [
+//!     Ball { center: Vec3::ZERO, radius: 1.0 },
+//!     Ball { center: Vec3::new(5.0, 0.0, 0.0), radius: 2.0 },
+//! ];
+//! for ball in &balls {
+//!     check_enclosed_by_vertices(ball)?;
+//! }
+//! let tree = SphereTree::<Ball>::build(&balls);
+//! tree.validate()?;
+//! let ray = Ray3::new(Vec3::new(-5.0, 0.0, 0.0), Vec3::X)?;
+//! let hit = tree.ray_first_hit(&ray, f32::INFINITY).expect("the ray meets ball 0");
+//! assert_eq!((hit.prim, hit.t), (0, 4.0));
+//! let nearest = tree.closest_point(Vec3::new(5.0, 3.0, 0.0)).expect("two balls");
+//! assert!(nearest.prim == 1 && (nearest.distance - 1.0).abs() < 1e-6);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! - **Refit a moving mesh** (`examples/refit_moving_mesh.rs`: a sheet that slides, then
+//!   bursts apart, refitted each frame and rebuilt when it pays). A refit keeps the tree's
+//!   shape and fits its boxes to the moved primitives, in linear time; the
+//!   [`RefitReport`](structure::bvh::RefitReport) says how much the SAH cost grew.
+//!
+//! ```
+//! use bvhlab::glam::Vec3;
+//! use bvhlab::prelude::*;
+//!
+//! let row = |slot: usize| {
+//!     let p = Vec3::X * slot as f32;
+//!     Triangle3::new(p, p + Vec3::X, p + Vec3::Y)
+//! };
+//! let mut tris: Vec<Triangle3> = (0..64).map(row).collect();
+//! let mut tree = Bvh4::build(&tris);
+//! // The triangles trade places: the same triangles, in the same order, moved.
+//! for (i, tri) in tris.iter_mut().enumerate() {
+//!     *tri = row(i * 37 % 64);
+//! }
+//! let report = tree.refit(&tris)?;
+//! // Neighbours in a leaf now lie far apart: the boxes grew, and a rebuild pays.
+//! assert!(report.cost_ratio().expect("a cost") > 1.5);
+//! if report.needs_rebuild(1.5) {
+//!     tree = Bvh4::build(&tris);
+//! }
+//! assert!(!tree.needs_rebuild(1.5));
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! - **Save and load a tree**: the `serde` feature's job, with its own example
+//!   (`examples/save_load.rs`), coming beside these.
+//!
 //! ## Where the code lives
 //!
 //! - [`primitive`]: segments, triangles (the watertight ray test in `primitive/triangle.rs`)

@@ -60,8 +60,24 @@ use crate::{Ray, Vector};
 /// You implement [`ray_hit`](Primitive::ray_hit) and [`project_point`](Primitive::project_point);
 /// every primitive then answers the same questions as volumes and structures, through
 /// [`RayCast`](crate::RayCast) (`ray_first_hit`, with [`hit_coordinates`](Primitive::hit_coordinates))
-/// and [`PointQuery`](crate::PointQuery) (`closest_point`, `distance`). The example
-/// `examples/custom_primitive.rs` indexes balls this way.
+/// and [`PointQuery`](crate::PointQuery) (`closest_point`, `distance`).
+///
+/// # Implementing it for your own primitive
+///
+/// 1. Derive `Clone, Copy, Debug, PartialEq` and pick [`Point`](Primitive::Point) (`Vec2`
+///    or `Vec3`). Write the required methods; [`hit_coordinates`](Primitive::hit_coordinates)
+///    has a default (`[0, 0]`) that a primitive with its own surface coordinates (a ball's
+///    longitude and latitude, say) replaces.
+/// 2. Call [`check_enclosed_by_vertices`] on a few of your primitives: it catches vertices
+///    that do not enclose the primitive (contract 1) before a tree misses them.
+/// 3. Build any structure over a slice of them, call `validate()`, and compare a few answers
+///    with [`BruteForce`](crate::BruteForce)'s, which tests every primitive: a difference means
+///    a method breaks the contract (often a [`bounds`](Primitive::bounds) too small for
+///    contract 2, or a [`ray_hit`](Primitive::ray_hit) that takes the ray's direction to be
+///    of unit length: it need not be, and `t` is in units of it).
+///
+/// `crates/bvhlab/examples/custom_primitive.rs` does all three for balls, and the crate
+/// documentation's "Start here" has a condensed version.
 pub trait Primitive: Copy + Debug + PartialEq + Send + Sync + 'static {
     /// The vector type of the space the primitive lives in.
     type Point: Vector;
