@@ -53,7 +53,10 @@ fn batch_queries_answer_as_one_query_at_a_time() {
         })
         .collect();
     let rays: Vec<Ray3> = (0..3000)
-        .map(|_| Ray3::through(random_vec3(&mut rng, 14.0), random_vec3(&mut rng, 8.0)).unwrap())
+        .map(|_| {
+            Ray3::through(random_vec3(&mut rng, 14.0), random_vec3(&mut rng, 8.0))
+                .expect("a valid ray")
+        })
         .collect();
     let points: Vec<Vec3> = (0..2000).map(|_| random_vec3(&mut rng, 12.0)).collect();
     check("Bvh4", &Bvh4::build(&tris), &rays, &points);

@@ -44,17 +44,20 @@ fn scene(rng: &mut ChaCha8Rng) -> (String, Vec<Triangle3>) {
     }
 }
 
+/// What the two traits answer: first hits, `intersects_ray`, closest points, distances.
+type Answers = (
+    Vec<Option<Hit>>,
+    Vec<bool>,
+    Vec<Option<Nearest<Vec3>>>,
+    Vec<f32>,
+);
+
 /// Everything the two traits answer for the queries, written once for any implementor.
 fn answers<Q: RayCast<Vec3> + PointQuery<Vec3>>(
     thing: &Q,
     rays: &[Ray3],
     points: &[Vec3],
-) -> (
-    Vec<Option<Hit>>,
-    Vec<bool>,
-    Vec<Option<Nearest<Vec3>>>,
-    Vec<f32>,
-) {
+) -> Answers {
     (
         rays.iter()
             .map(|r| thing.ray_first_hit(r, f32::INFINITY))
@@ -86,13 +89,7 @@ fn every_structure_answers_the_query_traits_as_brute_force() {
         expected.0.iter().filter(|h| h.is_some()).count() > 50,
         "{name}: too few rays hit to test anything"
     );
-    let check = |what: &str,
-                 got: (
-        Vec<Option<Hit>>,
-        Vec<bool>,
-        Vec<Option<Nearest<Vec3>>>,
-        Vec<f32>,
-    )| {
+    let check = |what: &str, got: Answers| {
         assert_eq!(got.0, expected.0, "{name}: {what}'s first hits");
         assert_eq!(got.1, expected.1, "{name}: {what}'s intersects_ray");
         assert_eq!(got.2, expected.2, "{name}: {what}'s closest points");
@@ -133,7 +130,7 @@ fn a_volume_answers_ray_first_hit_and_closest_point_from_its_own_queries() {
     }
     // The empty volume: no hit, no closest point, infinitely far.
     assert_eq!(
-        Aabb3::EMPTY.ray_first_hit(&Ray3::new(Vec3::ZERO, Vec3::X).unwrap(), 1.0),
+        Aabb3::EMPTY.ray_first_hit(&Ray3::new(Vec3::ZERO, Vec3::X).expect("a valid ray"), 1.0),
         None
     );
     assert_eq!(Aabb3::EMPTY.closest_point(Vec3::ZERO), None);
@@ -214,7 +211,7 @@ fn a_primitive_answers_the_query_traits_as_a_one_primitive_structure() {
     }
     // Segments and points too, in 2D.
     let s = Segment2::new(Vec2::ZERO, Vec2::new(2.0, 0.0));
-    let down = Ray2::new(Vec2::new(0.5, 1.0), -Vec2::Y).unwrap();
+    let down = Ray2::new(Vec2::new(0.5, 1.0), -Vec2::Y).expect("a valid ray");
     let hit = s
         .ray_first_hit(&down, f32::INFINITY)
         .expect("the ray crosses the segment");
@@ -256,8 +253,8 @@ fn builds_take_build_with_and_leaf_size_alike_everywhere() {
         },
     );
     assert_eq!(
-        wide.ray_first_hit(&Ray3::new(Vec3::ZERO, Vec3::X).unwrap(), 50.0),
-        bvh.ray_first_hit(&Ray3::new(Vec3::ZERO, Vec3::X).unwrap(), 50.0)
+        wide.ray_first_hit(&Ray3::new(Vec3::ZERO, Vec3::X).expect("a valid ray"), 50.0),
+        bvh.ray_first_hit(&Ray3::new(Vec3::ZERO, Vec3::X).expect("a valid ray"), 50.0)
     );
     let mut kd = KdTreeOptions::median(bvhlab::structure::kdtree::AxisRule::LongestAxis);
     kd.leaf_size = leaf_size;
@@ -331,7 +328,10 @@ fn spatial_index_brings_the_query_traits_with_it() {
     let mut rng = ChaCha8Rng::seed_from_u64(25);
     let tris = random_triangles(&mut rng, 200);
     let rays: Vec<Ray3> = (0..100)
-        .map(|_| Ray3::through(random_vec3(&mut rng, 14.0), random_vec3(&mut rng, 8.0)).unwrap())
+        .map(|_| {
+            Ray3::through(random_vec3(&mut rng, 14.0), random_vec3(&mut rng, 8.0))
+                .expect("a valid ray")
+        })
         .collect();
     let brute = first_hits_of_any_index(&BruteForce::build(&tris), &rays);
     assert!(brute > 0);

@@ -415,7 +415,7 @@ pub trait Observer<V: Vector> {
 
     /// Whether this observer keeps split decisions ([`on_split`](Self::on_split)). `false`
     /// by default, and builders then skip the cost curves.
-    #[inline(always)]
+    #[inline]
     fn wants_splits(&self) -> bool {
         false
     }
@@ -423,7 +423,7 @@ pub trait Observer<V: Vector> {
     /// One node's split decision, with the cost of every candidate plane, after the
     /// [`Event::BuildSplit`] or [`Event::BuildLeaf`] of the same node. Called only when
     /// [`wants_splits`](Self::wants_splits) says so.
-    #[inline(always)]
+    #[inline]
     fn on_split(&mut self, record: &SplitRecord) {
         let _ = record;
     }

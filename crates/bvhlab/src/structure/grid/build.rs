@@ -35,7 +35,7 @@ impl<P: Primitive> Grid<P> {
     ) -> Self {
         let (bounds, unplaced) = placeable_bounds(prims);
         let placed = prims.len() - unplaced.len();
-        let dims = choose_resolution(&bounds, placed, &options);
+        let dims = choose_resolution(&bounds, placed, options);
         let mut grid = Self {
             prims: prims.to_vec(),
             bounds,
