@@ -197,7 +197,7 @@ fn build_events(prims: &[Segment2], settings: &BuildSettings) -> Vec<Event<Vec2>
     let leaf_size = settings.leaf_size.max(1);
     let bvh = BvhOptions {
         method: settings.bvh_split,
-        leaf_size: leaf_size,
+        leaf_size,
         sphere_fit: settings.sphere_fit,
         ..BvhOptions::default()
     };
@@ -229,7 +229,7 @@ fn build_events(prims: &[Segment2], settings: &BuildSettings) -> Vec<Event<Vec2>
         }
         StructureKind::Quadtree => {
             let options = OrthtreeOptions {
-                leaf_size: leaf_size,
+                leaf_size,
                 max_depth: settings.quadtree_depth,
             };
             Quadtree2::build_observed(prims, &options, &mut rec);

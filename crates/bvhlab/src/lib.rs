@@ -7,8 +7,10 @@
 //! - Primitives: [`Ray2`]/[`Ray3`], [`Segment2`], [`Triangle3`], points as glam vectors.
 //! - One query API: one trait per question, answered alike by volumes, primitives and
 //!   structures ([`queries`]): [`RayCast`] (`ray_first_hit`, `ray_any_hit`) and
-//!   [`PointQuery`] (`closest_point`, `distance`). Builds take their options the same way
-//!   everywhere (`Tree::build_with(&prims, &options)`, the leaf option is `leaf_size`).
+//!   [`PointQuery`] (`closest_point`, `distance`), each with a batch form over a slice
+//!   (`ray_first_hits`, `closest_points`, ...) that the `parallel` feature spreads over every
+//!   core. Builds take their options the same way everywhere
+//!   (`Tree::build_with(&prims, &options)`, the leaf option is `leaf_size`).
 //! - Bounding volumes, each fitted to a point set and each answering [`RayCast`],
 //!   [`PointQuery`] and the queries of [`prelude::BoundingVolume`] (ray interval,
 //!   containment, overlap, merge, measures): [`Aabb2`]/[`Aabb3`], [`Sphere2`]/[`Sphere3`] (the lecture's centroid fit,
