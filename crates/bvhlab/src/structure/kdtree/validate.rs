@@ -6,7 +6,9 @@ use super::build::{DEPTH_LIMIT, is_finite_box};
 use super::layout::KdNode;
 use crate::structure::ValidationError;
 use crate::structure::plane_tree::PlaneTree as _;
-use crate::structure::plane_tree::validate::{check_coverage, check_layout, check_nesting};
+use crate::structure::plane_tree::validate::{
+    check_coverage, check_layout, check_leaf_ranges, check_nesting,
+};
 use crate::volume::{Aabb, BoundingVolume};
 use crate::{Primitive, Vector};
 
@@ -55,6 +57,22 @@ pub fn validate<P: Primitive>(tree: &KdTree<P>) -> Result<(), ValidationError> {
         return Err(ValidationError::new(format!(
             "the root cell {:?} is not the box of the primitives {finite:?}",
             tree.root_cell()
+        )));
+    }
+    check_leaf_ranges(
+        tree.nodes().iter().map(|n| n.is_leaf().then(|| n.range())),
+        tree.indices.len(),
+    )?;
+    // The layout walk cuts cells along the split axes: an axis must exist before it runs.
+    if let Some(node) = tree
+        .nodes()
+        .iter()
+        .position(|n| !n.is_leaf() && n.axis() >= P::Point::DIM)
+    {
+        return Err(ValidationError::new(format!(
+            "node {node} splits axis {}, not one of {} axes",
+            tree.nodes()[node].axis(),
+            P::Point::DIM
         )));
     }
     let facts = check_layout(tree)?;
