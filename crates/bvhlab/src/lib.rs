@@ -65,6 +65,8 @@ pub mod math;
 pub mod mesh;
 pub mod primitive;
 pub mod ray;
+#[cfg(feature = "serde")]
+pub mod saved;
 pub mod structure;
 pub mod vector;
 pub mod volume;
