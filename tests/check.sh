@@ -20,8 +20,11 @@ step "tests (native)"
 # find an adapter, not skip.
 BVHLAB_REQUIRE_GPU=1 cargo test --workspace --lib --bins --tests
 cargo test --workspace --doc
+# Saved trees are behind bvhlab's `serde` feature, which no other crate turns on.
+cargo test -p bvhlab --features serde --test saved_trees --test example_save_load
+cargo test -p bvhlab --features serde --doc
 
-step "fuzzing (libFuzzer on stable Rust: mesh files, scene files, share links; 20 s each)"
+step "fuzzing (libFuzzer on stable Rust: mesh files, scene files, share links, saved trees; 20 s each)"
 # Builds fuzz/ instrumented (cargo and the C++ compiler only; about 10 minutes cold on 2
 # cores, seconds after), runs each target over its committed corpus; a crash fails.
 bash tests/fuzz.sh 20
@@ -33,10 +36,12 @@ cargo bench --workspace --exclude bvhlab-app --no-run
 
 step "lints (native, then the core and the lab for wasm32)"
 cargo clippy --workspace --all-targets -- -D warnings
+cargo clippy -p bvhlab --features serde --all-targets -- -D warnings
 cargo clippy -p bvhlab -p bvhlab-meshio -p bvhlab-app --target wasm32-unknown-unknown -- -D warnings
 
 step "docs"
 RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps
+RUSTDOCFLAGS="-D warnings" cargo doc -p bvhlab --features serde --no-deps
 
 step "core builds for wasm32-unknown-unknown"
 cargo build -p bvhlab --release --target wasm32-unknown-unknown
