@@ -408,7 +408,7 @@ fn a_file_that_is_not_a_tree_file_is_refused() {
     }
     let mut wrong = bytes.clone();
     wrong[0] ^= 0x20;
-    let err = saved::load::<AabbTree2>(&wrong).unwrap_err();
+    let err = saved::load::<AabbTree2>(&wrong).expect_err("a wrong magic");
     assert_eq!(err.to_string(), "not a bvhlab tree file");
 }
 
@@ -416,7 +416,7 @@ fn a_file_that_is_not_a_tree_file_is_refused() {
 fn a_file_of_another_version_is_refused_with_both_versions() {
     let (_, mut bytes) = small_file();
     bytes[8..12].copy_from_slice(&3u32.to_le_bytes());
-    let err = saved::load::<AabbTree2>(&bytes).unwrap_err();
+    let err = saved::load::<AabbTree2>(&bytes).expect_err("another version");
     assert_eq!(err, LoadError::Version { found: 3 });
     assert_eq!(
         err.to_string(),

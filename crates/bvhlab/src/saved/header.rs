@@ -75,8 +75,13 @@ impl Header {
             structure: StructureKind::from_tag(bytes[12]).ok_or_else(|| {
                 LoadError::corrupt(format!("unknown structure tag {}", bytes[12]))
             })?,
-            volume: VolumeKind::from_tag(bytes[13])
-                .ok_or_else(|| LoadError::corrupt(format!("unknown volume tag {}", bytes[13])))?,
+            volume: match bytes[13] {
+                0 => None,
+                tag => Some(
+                    VolumeKind::from_tag(tag)
+                        .ok_or_else(|| LoadError::corrupt(format!("unknown volume tag {tag}")))?,
+                ),
+            },
             primitive: PrimitiveKind::from_tag(bytes[14]).ok_or_else(|| {
                 LoadError::corrupt(format!("unknown primitive tag {}", bytes[14]))
             })?,

@@ -121,11 +121,9 @@ impl VolumeKind {
         })
     }
 
-    pub(super) fn from_tag(tag: u8) -> Option<Option<Self>> {
-        match tag {
-            0 => Some(None),
-            _ => Self::ALL.get(usize::from(tag) - 1).copied().map(Some),
-        }
+    /// The volume of a non-zero tag (0, no volume, is the header's to read).
+    pub(super) fn from_tag(tag: u8) -> Option<Self> {
+        Self::ALL.get(usize::from(tag).checked_sub(1)?).copied()
     }
 }
 

@@ -36,11 +36,8 @@ impl<P: Primitive> Bvh4<P> {
         // `input_len` is only a number, and must not size an allocation.
         let mut ids = self.leaf_ids.clone();
         ids.sort_unstable();
-        if let Some(pair) = ids.windows(2).find(|pair| pair[0] == pair[1]) {
-            return fail(format!(
-                "primitive {} is in more than one leaf slot",
-                pair[0]
-            ));
+        if let Some(&[id, _]) = ids.windows(2).find(|pair| pair[0] == pair[1]) {
+            return fail(format!("primitive {id} is in more than one leaf slot"));
         }
         for (slot, (&id, prim)) in self.leaf_ids.iter().zip(&self.leaf_prims).enumerate() {
             if id as usize >= self.input_len {
