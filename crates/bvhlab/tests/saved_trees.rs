@@ -97,8 +97,9 @@ fn check_answers<S>(name: &str, original: &S, loaded: &S, rng: &mut ChaCha8Rng, 
 where
     S: SpatialIndex,
 {
+    // (Equal primitives are `round_trip`'s to check: here `original` may be `loaded` itself,
+    // with a NaN that equals nothing.)
     let prims = loaded.primitives();
-    assert_eq!(prims, original.primitives(), "{name}: primitives");
     if prims.is_empty() {
         return;
     }
@@ -541,22 +542,22 @@ fn changed_payload_bytes_never_give_a_panic_or_a_wrong_tree() {
     let triangles = random_triangles(&mut rng, 8);
     let points: Vec<Vec3> = random_points(&mut rng, 12);
     let results = [
-        flip_payload_bytes("AABB tree 2D", &AabbTree2::build(&segments), 1, 600),
-        flip_payload_bytes("sphere tree 3D", &SphereTree3::build(&triangles), 2, 400),
-        flip_payload_bytes("OBB tree 3D", &ObbTree3::build(&triangles), 3, 400),
-        flip_payload_bytes("k-d tree 2D", &KdTree2::build(&segments), 4, 400),
-        flip_payload_bytes("k-d tree points", &KdTree::<Vec3>::build(&points), 5, 400),
-        flip_payload_bytes("BSP tree 3D", &Bsp3::build(&triangles), 6, 400),
-        flip_payload_bytes("grid 2D", &Grid2::build(&segments), 7, 400),
-        flip_payload_bytes("octree", &Octree3::build(&triangles), 8, 400),
-        flip_payload_bytes("brute force", &BruteForce::build(&segments), 9, 200),
+        flip_payload_bytes("AABB tree 2D", &AabbTree2::build(&segments), 1, 6000),
+        flip_payload_bytes("sphere tree 3D", &SphereTree3::build(&triangles), 2, 4000),
+        flip_payload_bytes("OBB tree 3D", &ObbTree3::build(&triangles), 3, 4000),
+        flip_payload_bytes("k-d tree 2D", &KdTree2::build(&segments), 4, 4000),
+        flip_payload_bytes("k-d tree points", &KdTree::<Vec3>::build(&points), 5, 4000),
+        flip_payload_bytes("BSP tree 3D", &Bsp3::build(&triangles), 6, 4000),
+        flip_payload_bytes("grid 2D", &Grid2::build(&segments), 7, 4000),
+        flip_payload_bytes("octree", &Octree3::build(&triangles), 8, 4000),
+        flip_payload_bytes("brute force", &BruteForce::build(&segments), 9, 2000),
     ];
     eprintln!("(refused, loaded) per structure: {results:?}");
     let refused: usize = results.iter().map(|r| r.0).sum();
-    assert!(refused > 1000, "only {refused} damaged files were refused");
+    assert!(refused > 10_000, "only {refused} damaged files were refused");
     // Bvh4 has no SpatialIndex: its damaged copies must load valid or be refused.
     let wide = saved::save(&Bvh4::build(&triangles)).expect("saves");
-    for _ in 0..400 {
+    for _ in 0..4000 {
         let mut damaged = wide.clone();
         let at = rng.random_range(saved::HEADER_LEN..damaged.len());
         damaged[at] ^= rng.random_range(1..=255u8);

@@ -157,6 +157,9 @@ where
 
     fn validate_volumes(&self, ranges: &[(usize, usize)]) -> Result<(), ValidationError> {
         for (i, node) in self.nodes.iter().enumerate() {
+            if !node.volume.is_well_formed() {
+                return fail(format!("the {} of node {i} is malformed", B::NAME));
+            }
             let (start, end) = ranges[i];
             for slot in start..end {
                 if !node.volume.contains_primitive(&self.leaf_prims[slot]) {
