@@ -16,7 +16,7 @@ use bvhlab::glam::Vec3;
 use bvhlab::saved::{self, HEADER_LEN, Saved};
 use bvhlab::structure::{BruteForce, PointOf, RangeShape};
 use bvhlab::{
-    Aabb, AabbTree2, AabbTree3, Bsp3, Bvh4, Grid2, KdTree, Octree3, ObbTree3, Ray, SpatialIndex,
+    Aabb, AabbTree2, AabbTree3, Bsp3, Bvh4, Grid2, KdTree, ObbTree3, Octree3, Ray, SpatialIndex,
     Sphere, SphereTree2, Triangle3, Vector,
 };
 use libfuzzer_sys::fuzz_target;
@@ -65,15 +65,26 @@ fn try_index<S: SpatialIndex + Saved>(rest: &[u8], as_payload: bool) {
     for (i, point) in probes::<PointOf<S>>().into_iter().enumerate() {
         let dir = probes::<PointOf<S>>()[(i + 1) % 4] - point;
         if let Ok(ray) = Ray::new(point, dir) {
-            let (hit, expected) = (tree.ray_first_hit(&ray, f32::INFINITY), brute.ray_first_hit(&ray, f32::INFINITY));
-            assert_eq!(hit.map(|h| h.t), expected.map(|h| h.t), "first hit against brute force");
+            let (hit, expected) = (
+                tree.ray_first_hit(&ray, f32::INFINITY),
+                brute.ray_first_hit(&ray, f32::INFINITY),
+            );
+            assert_eq!(
+                hit.map(|h| h.t),
+                expected.map(|h| h.t),
+                "first hit against brute force"
+            );
             assert_eq!(
                 tree.ray_all_hits(&ray, f32::INFINITY),
                 brute.ray_all_hits(&ray, f32::INFINITY),
                 "all hits against brute force"
             );
         }
-        assert_eq!(tree.k_nearest(point, 2), brute.k_nearest(point, 2), "k nearest");
+        assert_eq!(
+            tree.k_nearest(point, 2),
+            brute.k_nearest(point, 2),
+            "k nearest"
+        );
         let shape = RangeShape::Ball(Sphere::new(point, 1.0));
         assert_eq!(tree.range(&shape), brute.range(&shape), "range");
     }
@@ -88,7 +99,10 @@ fn try_wide(rest: &[u8], as_payload: bool) {
     assert_eq!(tree.validate(), Ok(()), "a loaded tree fails its check");
     for point in probes::<Vec3>() {
         if let Ok(ray) = Ray::new(point, Vec3::ONE - point) {
-            let _ = (tree.ray_first_hit(&ray, f32::INFINITY), tree.ray_all_hits(&ray, f32::INFINITY));
+            let _ = (
+                tree.ray_first_hit(&ray, f32::INFINITY),
+                tree.ray_all_hits(&ray, f32::INFINITY),
+            );
         }
         let _ = (tree.closest_point(point), tree.k_nearest(point, 2));
         let _ = tree.range(&RangeShape::Box(Aabb::new(point, point + Vec3::ONE)));

@@ -554,7 +554,10 @@ fn changed_payload_bytes_never_give_a_panic_or_a_wrong_tree() {
     ];
     eprintln!("(refused, loaded) per structure: {results:?}");
     let refused: usize = results.iter().map(|r| r.0).sum();
-    assert!(refused > 10_000, "only {refused} damaged files were refused");
+    assert!(
+        refused > 10_000,
+        "only {refused} damaged files were refused"
+    );
     // Bvh4 has no SpatialIndex: its damaged copies must load valid or be refused.
     let wide = saved::save(&Bvh4::build(&triangles)).expect("saves");
     for _ in 0..4000 {
