@@ -20,10 +20,12 @@ step "tests (native)"
 # find an adapter, not skip.
 BVHLAB_REQUIRE_GPU=1 cargo test --workspace --lib --bins --tests
 cargo test --workspace --doc
-# The core's optional features, in one extra build of the core: batch queries on every core.
-cargo test -p bvhlab --features parallel --test batch_queries
+# The core's optional features, which no other crate turns on, in one extra build of the
+# core: saved trees (`serde`) and batch queries on every core (`parallel`).
+cargo test -p bvhlab --features serde,parallel --test saved_trees --test example_save_load --test batch_queries
+cargo test -p bvhlab --features serde,parallel --doc
 
-step "fuzzing (libFuzzer on stable Rust: mesh files, scene files, share links; 20 s each)"
+step "fuzzing (libFuzzer on stable Rust: mesh files, scene files, share links, saved trees; 20 s each)"
 # Builds fuzz/ instrumented (cargo and the C++ compiler only; about 10 minutes cold on 2
 # cores, seconds after), runs each target over its committed corpus; a crash fails.
 bash tests/fuzz.sh 20
@@ -40,6 +42,7 @@ cargo clippy -p bvhlab -p bvhlab-meshio -p bvhlab-app --target wasm32-unknown-un
 
 step "docs"
 RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps
+RUSTDOCFLAGS="-D warnings" cargo doc -p bvhlab --features serde --no-deps
 
 step "core builds for wasm32-unknown-unknown"
 cargo build -p bvhlab --release --target wasm32-unknown-unknown

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Fuzzes what the lab reads from outside (mesh files, scene files, share links) with libFuzzer,
-# on stable Rust: builds the targets of fuzz/ with the sanitizer-coverage instrumentation
+# Fuzzes what the lab reads from outside (mesh files, scene files, share links, saved trees) with
+# libFuzzer, on stable Rust: builds the targets of fuzz/ with the sanitizer-coverage instrumentation
 # cargo-fuzz would add (but without AddressSanitizer, which needs nightly; the code is safe
 # Rust, so a panic, a hang or an out-of-memory is what there is to find), then runs each target
 # for the given seconds over its committed corpus. Any crash, hang (a case over 10 s) or
@@ -20,7 +20,7 @@ seconds=${1:-20}
 shift || true
 targets=("$@")
 if [ ${#targets[@]} -eq 0 ]; then
-    targets=(mesh_load scene_file share_link)
+    targets=(mesh_load scene_file share_link saved_tree)
 fi
 
 host=$(rustc -vV | sed -n 's/^host: //p')

@@ -218,8 +218,37 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 //!
-//! - **Save and load a tree**: the `serde` feature's job, with its own example
-//!   (`examples/save_load.rs`), coming beside these.
+//! - **Save and load a tree** (`examples/save_load.rs`, with the `serde` feature): the next
+//!   section.
+//!
+//! ## Saving and loading a tree
+//!
+//! With the `serde` feature, `bvhlab::saved` saves any built structure (every [`Bvh`] node
+//! volume, [`Bvh4`], [`KdTree`], [`BspTree`], [`Grid`], [`Orthtree`], [`BruteForce`], over
+//! segments, triangles or points) as bytes and loads it back as the type the caller names,
+//! so a tree is built once and loaded many times. The file names its format version and what
+//! it holds, and a load refuses, with an error that says why, a file of another version or
+//! kind, one cut short or damaged, and one whose structure fails its full check (every index
+//! in range, no cycle, volumes around their primitives): a load never panics and never gives a
+//! wrong tree.
+//!
+//! ```
+//! # #[cfg(feature = "serde")]
+//! # fn main() -> Result<(), Box<dyn std::error::Error>> {
+//! use bvhlab::glam::Vec3;
+//! use bvhlab::prelude::*;
+//!
+//! let tree = AabbTree3::build(&[Triangle3::new(Vec3::ZERO, Vec3::X, Vec3::Y)]);
+//! let bytes = bvhlab::saved::save(&tree)?;
+//! let loaded: AabbTree3 = bvhlab::saved::load(&bytes)?;
+//! assert_eq!(loaded, tree);
+//! let err = bvhlab::saved::load::<Grid3>(&bytes).unwrap_err();
+//! assert_eq!(err.to_string(), "the file holds a Bvh with Aabb nodes over Triangle3, not a Grid over Triangle3");
+//! # Ok(())
+//! # }
+//! # #[cfg(not(feature = "serde"))]
+//! # fn main() {}
+//! ```
 //!
 //! ## Where the code lives
 //!
@@ -233,7 +262,8 @@
 //!   walks they share in [`structure::plane_tree`], [`structure::grid`], and
 //!   [`structure::quadtree`] (the quadtree in 2D, the octree in 3D). Across structures a job
 //!   has one file name: `layout`, `build`, `ray`, `nearest`, `range`, `collide`, `validate`.
-//! - [`mesh`] (OBJ files), [`ray`], [`vector`], [`math`], [`error`].
+//! - [`mesh`] (OBJ files), [`ray`], [`vector`], [`math`], [`error`]; with the `serde`
+//!   feature, `saved` (saving and loading built structures).
 
 pub use glam;
 
@@ -243,6 +273,8 @@ pub mod mesh;
 pub mod primitive;
 pub mod queries;
 pub mod ray;
+#[cfg(feature = "serde")]
+pub mod saved;
 pub mod structure;
 pub mod vector;
 pub mod volume;

@@ -10,6 +10,7 @@ use crate::volume::Aabb;
 ///
 /// A segment with `a == b` is a point: queries still answer (the closest point is `a`; a ray
 /// hits it only when it passes exactly through it).
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
 #[repr(C)]
 pub struct Segment2 {

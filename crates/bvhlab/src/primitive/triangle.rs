@@ -11,6 +11,7 @@ use crate::volume::Aabb;
 /// Seen from the side its [`normal`](Primitive::normal) points to, the corners run
 /// counter-clockwise. Ray tests hit both sides. A degenerate triangle (zero area) is never hit
 /// by a ray, but its closest point is still well defined (on one of its edges).
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
 #[repr(C)]
 pub struct Triangle3 {

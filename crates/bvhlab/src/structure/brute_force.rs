@@ -9,6 +9,7 @@ use super::{
 use crate::{Primitive, Ray, Vector};
 
 /// No structure at all: every query tests every primitive.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct BruteForce<P: Primitive> {
     prims: Vec<P>,

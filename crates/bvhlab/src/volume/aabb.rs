@@ -11,6 +11,7 @@ use crate::{Ray, Vector};
 ///
 /// The empty box has `min = +inf` and `max = -inf` in every coordinate, so that it is the
 /// identity of [`merge`](BoundingVolume::merge) and growing it by a point gives that point.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Aabb<V: Vector> {
     /// The corner with the smallest coordinates (`x_min`, `y_min`, `z_min`).

@@ -19,6 +19,7 @@ use crate::{Ray, Vector};
 /// `axes` must be orthonormal (right-handed in 3D); the fits and [`Obb::from_aabb`] make it so.
 /// The empty box has negative (`-inf`) half extents: it contains nothing, and merging with it
 /// gives the other box.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Obb<V: Vector> {
     /// The centre of the box.

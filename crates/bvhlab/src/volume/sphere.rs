@@ -13,6 +13,7 @@ use crate::{Ray, Vector};
 /// circle in 2D ([`Sphere2`](crate::Sphere2)).
 ///
 /// A negative radius is the empty sphere ([`Sphere::EMPTY`], fitted to no points).
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Sphere<V: Vector> {
     /// The centre `c`.

@@ -17,6 +17,7 @@ const LEAF_BIT: u32 = 1 << 31;
 ///   (zero in a leaf);
 /// - `first_or_above` (4): a leaf's first entry in the index list, an inner node's above child;
 /// - `count_or_inner` (4): a leaf's primitive count with the top bit set; 0 for an inner node.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[repr(C)]
 pub struct BspNode<V: Vector> {

@@ -33,6 +33,7 @@ use crate::volume::Aabb;
 use crate::{Primitive, Ray};
 
 /// How a [`BspTree`] is built.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Clone, Debug, PartialEq)]
 pub struct BspOptions {
     /// A node with at most this many primitives becomes a leaf (at least 1).
@@ -88,7 +89,15 @@ impl Default for BspOptions {
 /// assert_eq!((nearest.prim, nearest.distance), (3, 1.0));
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    serde(bound(
+        serialize = "P: serde::Serialize, P::Point: serde::Serialize",
+        deserialize = "P: serde::Deserialize<'de>, P::Point: serde::Deserialize<'de>"
+    ))
+)]
 pub struct BspTree<P: Primitive> {
     prims: Vec<P>,
     nodes: Vec<BspNode<P::Point>>,

@@ -5,7 +5,9 @@ use super::BspTree;
 use super::build::{DEPTH_LIMIT, bounds_of};
 use super::plane::Plane;
 use crate::structure::ValidationError;
-use crate::structure::plane_tree::validate::{check_coverage, check_layout, check_nesting};
+use crate::structure::plane_tree::validate::{
+    check_coverage, check_layout, check_leaf_ranges, check_nesting,
+};
 use crate::structure::plane_tree::{PlaneNode, PlaneTree};
 use crate::volume::BoundingVolume;
 use crate::{Primitive, Vector as _};
@@ -21,6 +23,10 @@ use crate::{Primitive, Vector as _};
 /// # Errors
 /// The first violation found.
 pub fn validate<P: Primitive>(tree: &BspTree<P>) -> Result<(), ValidationError> {
+    check_leaf_ranges(
+        tree.nodes().iter().map(|n| n.is_leaf().then(|| n.range())),
+        tree.indices.len(),
+    )?;
     let facts = check_layout(tree)?;
     check_nesting(tree, &facts)?;
     let prims = tree.prims();

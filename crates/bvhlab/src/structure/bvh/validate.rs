@@ -97,6 +97,13 @@ where
             }
             let node = &self.nodes[i];
             if node.is_leaf() {
+                // Checked before `leaf_range`, whose `u32` sum a loaded file could overflow.
+                if node.start.checked_add(node.count).is_none() {
+                    return fail(format!(
+                        "leaf {i} holds {} primitives from {}, past the end of any tree",
+                        node.count, node.start
+                    ));
+                }
                 let range = node.leaf_range();
                 if range.end > covered.len() {
                     return fail(format!(
@@ -150,6 +157,9 @@ where
 
     fn validate_volumes(&self, ranges: &[(usize, usize)]) -> Result<(), ValidationError> {
         for (i, node) in self.nodes.iter().enumerate() {
+            if !node.volume.is_well_formed() {
+                return fail(format!("the {} of node {i} is malformed", B::NAME));
+            }
             let (start, end) = ranges[i];
             for slot in start..end {
                 if !node.volume.contains_primitive(&self.leaf_prims[slot]) {

@@ -6,6 +6,7 @@ use crate::{BoundingVolume, Primitive, Vector};
 
 /// Options of a grid build. [`GridOptions::default`] picks the resolution from the primitive
 /// count with `density = 3` and at most 2^22 cells.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct GridOptions {
     /// Cells per primitive, λ in Cleary and Wyvill's rule (see
@@ -38,7 +39,15 @@ impl Default for GridOptions {
 /// One implementation for 2D (segments, points) and 3D (triangles, points). Build with
 /// [`Grid::build`] or [`Grid::build_with`]; query through
 /// [`SpatialIndex`](crate::SpatialIndex).
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    serde(bound(
+        serialize = "P: serde::Serialize, P::Point: serde::Serialize",
+        deserialize = "P: serde::Deserialize<'de>, P::Point: serde::Deserialize<'de>"
+    ))
+)]
 pub struct Grid<P: Primitive> {
     pub(super) prims: Vec<P>,
     /// The box the cells tile: the bounds of the placeable primitives (empty when none).
@@ -68,6 +77,7 @@ pub struct Grid<P: Primitive> {
 /// Where one cell's list lies: `cell_prims[start..start + len]`, with room for updates up
 /// to `start + room` (12 bytes a cell: the price of updates that touch only their cells,
 /// where compressed sparse rows would move every list after the change).
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub(super) struct CellList {
     pub(super) start: u32,

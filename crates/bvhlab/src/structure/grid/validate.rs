@@ -40,6 +40,7 @@ impl<P: Primitive> Grid<P> {
     /// in exactly the cells it shares a point with: against every cell on moderate inputs,
     /// else against the cells its box touches.
     pub(super) fn check(&self) -> Result<(), ValidationError> {
+        self.check_shape()?;
         self.check_layout()?;
         if self.unplaced.windows(2).any(|w| w[0] >= w[1]) {
             return fail("the unplaced list is not ascending".into());
@@ -68,6 +69,26 @@ impl<P: Primitive> Grid<P> {
             self.check_every_cell()
         } else {
             self.check_candidate_cells()
+        }
+    }
+
+    /// What the other checks take for granted, and a grid loaded from a file may break: the
+    /// cell count fits in a `usize` (every method multiplies the resolution out), a grid with
+    /// cells has a finite box, and one without has no resolution at all.
+    fn check_shape(&self) -> Result<(), ValidationError> {
+        let cells = self
+            .dims
+            .iter()
+            .try_fold(1usize, |product, &n| product.checked_mul(n as usize));
+        match cells {
+            None => fail(format!("the resolution {:?} has too many cells", self.dims)),
+            Some(0) if self.dims != [0; 3] => {
+                fail(format!("the resolution {:?} has an empty axis", self.dims))
+            }
+            Some(n) if n > 0 && !(self.bounds.min.is_finite() && self.bounds.max.is_finite()) => {
+                fail(format!("the grid box {:?} is not finite", self.bounds))
+            }
+            _ => Ok(()),
         }
     }
 

@@ -14,6 +14,7 @@ const LEAF: u32 = 3;
 ///   first entry in the index list;
 /// - `axis_and_index` (4): bits 0-1 hold the split axis (0, 1, 2) or 3 for a leaf; bits 2-31
 ///   hold an inner node's above child or a leaf's primitive count (so at most 2^30 of either).
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[repr(C)]
 pub struct KdNode {

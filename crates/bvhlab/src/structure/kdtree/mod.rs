@@ -55,7 +55,15 @@ use crate::{Primitive, Ray, Vector};
 /// assert_eq!((hit.prim, hit.t), (3, 0.5));
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    serde(bound(
+        serialize = "P: serde::Serialize, P::Point: serde::Serialize",
+        deserialize = "P: serde::Deserialize<'de>, P::Point: serde::Deserialize<'de>"
+    ))
+)]
 pub struct KdTree<P: Primitive> {
     prims: Vec<P>,
     nodes: Vec<KdNode>,

@@ -3,6 +3,7 @@
 use crate::{Primitive, Vector};
 
 /// How the median builder picks a node's split axis.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum AxisRule {
     /// The longest axis of the node's cell (the lecture's choice for top-down builds).
@@ -17,6 +18,7 @@ pub enum AxisRule {
 /// p_above n_above)`, where `p` is the child cell's surface area (perimeter in 2D) over the
 /// node's, and `bonus` is `empty_bonus` when one child is empty; a leaf costs
 /// `intersection · n`.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SahCosts {
     /// The cost of visiting an inner node.
@@ -40,6 +42,7 @@ impl Default for SahCosts {
 }
 
 /// Which algorithm chooses the splitting planes.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum KdBuilder {
     /// Split at the median of the primitives' centres (Bentley 1975), along the axis the rule
@@ -53,6 +56,7 @@ pub enum KdBuilder {
 }
 
 /// How a [`KdTree`](super::KdTree) is built.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct KdTreeOptions {
     /// The split algorithm.

@@ -5,8 +5,10 @@ use super::KdTree;
 use super::build::{DEPTH_LIMIT, is_finite_box};
 use super::layout::KdNode;
 use crate::structure::ValidationError;
-use crate::structure::plane_tree::PlaneTree as _;
-use crate::structure::plane_tree::validate::{check_coverage, check_layout, check_nesting};
+use crate::structure::plane_tree::validate::{
+    check_coverage, check_layout, check_leaf_ranges, check_nesting,
+};
+use crate::structure::plane_tree::{PlaneNode, PlaneTree};
 use crate::volume::{Aabb, BoundingVolume};
 use crate::{Primitive, Vector};
 
@@ -14,14 +16,24 @@ use crate::{Primitive, Vector};
 /// primitive and cell it reaches); above, it only checks that every primitive is stored.
 pub const EXACT_COVERAGE_LIMIT: usize = 100_000;
 
-/// The cell's interior, approximated from inside by moving each face one `f32` step inwards;
-/// `None` when the cell is too thin to have one.
-fn interior<V: Vector>(cell: &Aabb<V>) -> Option<Aabb<V>> {
+/// The cell's interior, approximated from inside by moving each face that is a split plane
+/// one `f32` step inwards; `None` when the cell is too thin to have one. Faces on the root
+/// cell's boundary stay: no neighbouring cell holds the points on them, so the cell must.
+fn interior<V: Vector>(cell: &Aabb<V>, root: &Aabb<V>) -> Option<Aabb<V>> {
     let mut inner = *cell;
     for axis in 0..V::DIM {
+        let (min, max) = (cell.min.coord(axis), cell.max.coord(axis));
         let (lo, hi) = (
-            cell.min.coord(axis).next_up(),
-            cell.max.coord(axis).next_down(),
+            if min == root.min.coord(axis) {
+                min
+            } else {
+                min.next_up()
+            },
+            if max == root.max.coord(axis) {
+                max
+            } else {
+                max.next_down()
+            },
         );
         if lo > hi {
             return None;
@@ -57,6 +69,22 @@ pub fn validate<P: Primitive>(tree: &KdTree<P>) -> Result<(), ValidationError> {
             tree.root_cell()
         )));
     }
+    check_leaf_ranges(
+        tree.nodes().iter().map(|n| n.is_leaf().then(|| n.range())),
+        tree.indices.len(),
+    )?;
+    // The layout walk cuts cells along the split axes: an axis must exist before it runs.
+    if let Some(node) = tree
+        .nodes()
+        .iter()
+        .position(|n| !n.is_leaf() && n.axis() >= P::Point::DIM)
+    {
+        return Err(ValidationError::new(format!(
+            "node {node} splits axis {}, not one of {} axes",
+            tree.nodes()[node].axis(),
+            P::Point::DIM
+        )));
+    }
     let facts = check_layout(tree)?;
     check_nesting(tree, &facts)?;
     for (node, fact) in facts.iter().enumerate() {
@@ -81,11 +109,25 @@ pub fn validate<P: Primitive>(tree: &KdTree<P>) -> Result<(), ValidationError> {
             }
         }
     }
+    // A leaf lists only primitives whose box meets its closed cell: the coverage check below
+    // lets a primitive on a split plane be stored on either side, and this keeps it from
+    // being stored in a leaf no query near it visits.
+    for (node, fact) in facts.iter().enumerate() {
+        if let PlaneNode::Leaf(list) = PlaneTree::node(tree, node as u32)
+            && let Some(&prim) = list
+                .iter()
+                .find(|&&prim| !tree.prims()[prim as usize].bounds().overlaps(&fact.bound))
+        {
+            return Err(ValidationError::new(format!(
+                "leaf {node} lists primitive {prim}, whose box misses its cell"
+            )));
+        }
+    }
     let exact = tree.prims().len() <= EXACT_COVERAGE_LIMIT;
     check_coverage(tree, &facts, |_, children, prim, facts| {
         children.map(|child| {
             exact
-                && interior(&facts[child as usize].bound)
+                && interior(&facts[child as usize].bound, &tree.root_cell())
                     .is_some_and(|inside| prim.intersects_aabb(&inside))
         })
     })

@@ -18,6 +18,23 @@ pub(crate) struct NodeFacts<V: Vector> {
     pub end: u32,
 }
 
+/// Checks that every leaf's list (`None` for an inner node) lies inside the index list of
+/// `len` entries: the walks slice it without a check, so a tree loaded from a file must pass
+/// this before anything else reads its leaves.
+pub(crate) fn check_leaf_ranges(
+    leaves: impl Iterator<Item = Option<std::ops::Range<usize>>>,
+    len: usize,
+) -> Result<(), ValidationError> {
+    for (node, range) in leaves.enumerate() {
+        if let Some(range) = range.filter(|range| range.end > len) {
+            return Err(ValidationError::new(format!(
+                "leaf {node} lists entries {range:?} of {len}"
+            )));
+        }
+    }
+    Ok(())
+}
+
 /// Walks the tree in depth-first order and checks its layout: the nodes are numbered in
 /// preorder (so every subtree is a contiguous range and the below child follows its parent),
 /// every node is reached exactly once, and leaves list valid primitive indices without
@@ -69,7 +86,8 @@ pub(crate) fn check_layout<T: PlaneTree>(
                 }
             }
             PlaneNode::Inner([below, above]) => {
-                if below != node + 1 || above <= below {
+                // Both children must exist before `child_bounds` reads them.
+                if below != node + 1 || above <= below || above as usize >= count {
                     return Err(ValidationError::new(format!(
                         "inner node {node} has children {below} and {above}; expected {} first",
                         node + 1

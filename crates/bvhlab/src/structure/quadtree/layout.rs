@@ -11,6 +11,7 @@ pub const MAX_DEPTH: usize = 40;
 
 /// Options of a quadtree/octree build. [`OrthtreeOptions::default`]: leaves of at most 8
 /// primitives, depth at most 10 (1024 cells along each side of the root).
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct OrthtreeOptions {
     /// A cell holding more primitives than this is split into 2^D children (unless it is at
@@ -40,6 +41,7 @@ pub(super) const INNER: u32 = u32::MAX;
 /// closed sub-box that takes the upper half of axis `i` when bit `i` of `k` is set.
 /// Boxes are not stored: each is computed from its parent's by [`child_box_at`] during traversal,
 /// the same computation the build did, so build and queries agree to the bit.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) struct Node {
@@ -63,7 +65,15 @@ impl Node {
 /// every leaf it shares a point with, so a primitive crossing a split plane is duplicated,
 /// and queries test it once (mailboxing). Build with [`Orthtree::build`] or
 /// [`Orthtree::build_with`]; query through [`SpatialIndex`](crate::SpatialIndex).
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    serde(bound(
+        serialize = "P: serde::Serialize, P::Point: serde::Serialize",
+        deserialize = "P: serde::Deserialize<'de>, P::Point: serde::Deserialize<'de>"
+    ))
+)]
 pub struct Orthtree<P: Primitive> {
     pub(super) prims: Vec<P>,
     /// The root cell: a cube (square) around the placeable primitives; empty when none.

@@ -1,11 +1,11 @@
 //! The 2^D tree's invariants and numbers.
 
 use super::build::{Split, child_mask};
-use super::layout::{Orthtree, child_box_at, split_point};
+use super::layout::{MAX_DEPTH, Orthtree, child_box_at, child_count, split_point};
 use crate::structure::grid::probe::is_placeable;
 use crate::structure::stats::sah_cost_boxes;
 use crate::structure::{NodeId, Stats, ValidationError};
-use crate::{BoundingVolume, Primitive};
+use crate::{BoundingVolume, Primitive, Vector};
 
 /// Up to this many (leaf, primitive) pairs, validation also tests every primitive against
 /// every leaf, independently of the build's rule.
@@ -41,6 +41,7 @@ impl<P: Primitive> Orthtree<P> {
     /// that share a point with it (descending from the root with the build's rule, and on
     /// moderate inputs also against every leaf independently).
     pub(super) fn check(&self) -> Result<(), ValidationError> {
+        self.check_indices()?;
         for (i, prim) in self.prims.iter().enumerate() {
             if is_placeable(prim) == self.unplaced.binary_search(&(i as u32)).is_ok() {
                 return fail(format!("primitive {i}: wrongly (un)placed"));
@@ -55,6 +56,14 @@ impl<P: Primitive> Orthtree<P> {
             } else {
                 fail("no nodes, but primitives to place".into())
             };
+        }
+        if placed.is_empty() || !(self.root.min.is_finite() && self.root.max.is_finite()) {
+            return fail(format!(
+                "{} nodes over {} placed primitives in the root cell {:?}",
+                self.nodes.len(),
+                placed.len(),
+                self.root
+            ));
         }
         for &i in &placed {
             let b = self.prims[i as usize].bounds();
@@ -127,6 +136,44 @@ impl<P: Primitive> Orthtree<P> {
             return fail("a reference belongs to no leaf".into());
         }
         self.check_every_leaf(&placed)
+    }
+
+    /// What the walk below and every query take for granted, and a tree loaded from a file
+    /// may break: the depth limit is [`MAX_DEPTH`] at most (the walks' stacks are sized by
+    /// the depth), the unplaced list is ascending and within the primitives, every reference
+    /// names a primitive, and every inner node's children lie inside the node array.
+    fn check_indices(&self) -> Result<(), ValidationError> {
+        if self.options.max_depth > MAX_DEPTH {
+            return fail(format!(
+                "the depth limit {} is beyond {MAX_DEPTH}",
+                self.options.max_depth
+            ));
+        }
+        if self.unplaced.windows(2).any(|w| w[0] >= w[1])
+            || self
+                .unplaced
+                .last()
+                .is_some_and(|&i| i as usize >= self.prims.len())
+        {
+            return fail("the unplaced list is not ascending or out of range".into());
+        }
+        if let Some(&i) = self.refs.iter().find(|&&i| i as usize >= self.prims.len()) {
+            return fail(format!(
+                "a leaf lists primitive {i} of {}",
+                self.prims.len()
+            ));
+        }
+        let children = child_count::<P::Point>();
+        for (node, n) in self.nodes.iter().enumerate() {
+            if !n.is_leaf() && n.first as usize + children > self.nodes.len() {
+                return fail(format!(
+                    "node {node}: children from {} past the {} nodes",
+                    n.first,
+                    self.nodes.len()
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// On moderate inputs: every primitive that shares a point with a leaf is listed there.

@@ -10,6 +10,7 @@ pub const MAX_DEPTH: usize = 64;
 /// How a node's primitives are divided between its two children. Every method picks a plane
 /// across one axis and sends each primitive to the side its centre lies on (pbrt-v4's
 /// `SplitMethod`: `Middle`, `EqualCounts`, `SAH`).
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum SplitMethod {
     /// The lecture's split: the middle of the longest axis of the primitive centres' box
@@ -29,6 +30,7 @@ pub enum SplitMethod {
 }
 
 /// How the sphere of a sphere-tree node is fitted to the vertices below it.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum SphereFit {
     /// Ritter's two-pass sphere ([`Sphere::ritter_fit`](crate::Sphere::ritter_fit)): linear
@@ -45,6 +47,7 @@ pub enum SphereFit {
 
 /// Options of a BVH build. [`BvhOptions::default`] is a binned-SAH build with leaves of at
 /// most 4 primitives.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BvhOptions {
     /// How nodes are split.

@@ -29,6 +29,7 @@ use crate::{Primitive, Vector};
 ///
 /// The app's GPU heat map reads AABB nodes as [`gpu::GpuNode`], which [`gpu`] makes from
 /// these: a change here must be carried there (and into the WGSL it names).
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[repr(C)]
 pub struct BvhNode<B> {
@@ -68,6 +69,7 @@ impl<B> BvhNode<B> {
 ///
 /// Primitives with a NaN or infinite coordinate are left out of the tree: no query reports
 /// them (brute force would only report what the primitive's own tests make of NaN).
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Clone, Debug, PartialEq)]
 pub struct Bvh<B, P: Primitive> {
     /// The input, in input order.

@@ -121,6 +121,14 @@ pub trait NodeVolume: BoundingVolume + Copy + Send + Sync + 'static {
     fn nests_in(&self, _parent: &Self) -> bool {
         true
     }
+
+    /// Whether the volume is one the node tests are conservative for, beyond containing its
+    /// primitives: true for boxes and spheres (whose containment test is the queries' own
+    /// arithmetic); an OBB's axes must be orthonormal, which its fits make them and a loaded
+    /// file might not ([`validate`](crate::SpatialIndex::validate) checks it).
+    fn is_well_formed(&self) -> bool {
+        true
+    }
 }
 
 /// A ray with what the node tests precompute once per query: the inverse direction, per

@@ -12,6 +12,17 @@ impl<V: Vector> NodeVolume for Obb<V> {
     const NAME: &'static str = "OBB";
     const NEEDS_VERTICES: bool = true;
 
+    /// Unit axes, pairwise orthogonal, to the tolerance a BSP plane's normal has (1e-5):
+    /// the OBB tests measure distances in the box's frame, which is only a rotation then.
+    fn is_well_formed(&self) -> bool {
+        let axes = self.axes.as_ref();
+        axes.iter().enumerate().all(|(i, a)| {
+            a.is_finite()
+                && (a.length() - 1.0).abs() < 1e-5
+                && axes[i + 1..].iter().all(|b| a.dot(*b).abs() < 1e-5)
+        }) && self.center.is_finite()
+    }
+
     /// The lecture's PCA box ([`Obb::pca_fit`]) of the node's vertices, each half extent
     /// grown by [`SLACK`](super::SLACK) of the box's scale: a flat leaf (coplanar triangles)
     /// has a zero extent, and a ray through it must still be inside it after rounding to the

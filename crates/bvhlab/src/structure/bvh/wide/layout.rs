@@ -40,6 +40,7 @@ pub const WIDTH: usize = 4;
 ///
 /// An unused lane has the empty box (`min = +inf`, `max = -inf`), which every slab test
 /// misses and every distance bound puts at infinity; in 2D the third axis is unused.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[repr(C, align(64))]
 pub struct Bvh4Node {
@@ -113,6 +114,7 @@ impl Bvh4Node {
 /// ```
 ///
 /// [`AabbTree`]: crate::structure::bvh::AabbTree
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Clone, Debug, PartialEq)]
 pub struct Bvh4<P: Primitive> {
     /// Wide nodes; the root is node 0 (when any primitive is indexed). Each node's inner

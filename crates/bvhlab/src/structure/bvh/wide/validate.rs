@@ -5,6 +5,7 @@ use super::layout::{Bvh4, WIDTH};
 use super::refit::node_box;
 use crate::primitive::check_enclosed_by_vertices;
 use crate::structure::ValidationError;
+use crate::structure::bvh::MAX_DEPTH;
 use crate::volume::BoundingVolume;
 use crate::{Primitive, Vector};
 
@@ -15,22 +16,34 @@ fn fail<T>(message: String) -> Result<T, ValidationError> {
 impl<P: Primitive> Bvh4<P> {
     /// Checks that every primitive id is distinct and within the input, each primitive
     /// finite and keeping the [`Primitive`] contract's enclosure; every wide node is reached
-    /// once from the root through child indices that point forward; the leaf lanes cover
-    /// the leaf order exactly once; every leaf lane's box contains its primitives' boxes
-    /// and every inner lane's box contains every lane of its child node.
+    /// once from the root through child indices that point forward; the recorded depth is the
+    /// tree's (the walks size their stacks by it) and at most [`MAX_DEPTH`]; the leaf lanes
+    /// cover the leaf order exactly once; every leaf lane's box contains its primitives' boxes
+    /// and every inner lane's box contains every lane of its child node. A tree loaded from a
+    /// file that passes these answers every query without indexing out of bounds.
     ///
     /// # Errors
     /// A [`ValidationError`] saying what is wrong.
     pub fn validate(&self) -> Result<(), ValidationError> {
-        let mut seen = vec![false; self.input_len];
+        if self.leaf_ids.len() != self.leaf_prims.len() {
+            return fail(format!(
+                "{} leaf ids for {} leaf primitives",
+                self.leaf_ids.len(),
+                self.leaf_prims.len()
+            ));
+        }
+        // Sorted rather than flagged in a table of `input_len` entries: a loaded file's
+        // `input_len` is only a number, and must not size an allocation.
+        let mut ids = self.leaf_ids.clone();
+        ids.sort_unstable();
+        if let Some(&[id, _]) = ids.windows(2).find(|pair| pair[0] == pair[1]) {
+            return fail(format!("primitive {id} is in more than one leaf slot"));
+        }
         for (slot, (&id, prim)) in self.leaf_ids.iter().zip(&self.leaf_prims).enumerate() {
-            let Some(flag) = seen.get_mut(id as usize) else {
+            if id as usize >= self.input_len {
                 return fail(format!(
                     "leaf slot {slot} names primitive {id}, out of range"
                 ));
-            };
-            if std::mem::replace(flag, true) {
-                return fail(format!("primitive {id} is in more than one leaf slot"));
             }
             if !prim.vertices().all(Vector::is_finite) {
                 return fail(format!("primitive {id} is non-finite but indexed"));
@@ -46,12 +59,14 @@ impl<P: Primitive> Bvh4<P> {
         let mut stack = if self.nodes.is_empty() {
             vec![]
         } else {
-            vec![0usize]
+            vec![(0usize, 1usize)]
         };
-        while let Some(i) = stack.pop() {
+        let mut depth = 0;
+        while let Some((i, level)) = stack.pop() {
             if std::mem::replace(&mut reached[i], true) {
                 return fail(format!("wide node {i} is reached twice"));
             }
+            depth = level.max(depth);
             let node = &self.nodes[i];
             for lane in (0..WIDTH).filter(|&lane| node.is_used(lane)) {
                 let lane_box = node.lane_box::<P::Point>(lane);
@@ -86,7 +101,7 @@ impl<P: Primitive> Bvh4<P> {
                             "the boxes of wide node {child} are not inside its parent {i}'s lane {lane}"
                         ));
                     }
-                    stack.push(child);
+                    stack.push((child, level + 1));
                 }
             }
         }
@@ -95,6 +110,12 @@ impl<P: Primitive> Bvh4<P> {
         }
         if let Some(slot) = covered.iter().position(|c| !c) {
             return fail(format!("leaf slot {slot} is in no leaf lane"));
+        }
+        if depth != self.depth || depth > MAX_DEPTH {
+            return fail(format!(
+                "the tree is {depth} wide levels deep, but records {} (at most {MAX_DEPTH})",
+                self.depth
+            ));
         }
         Ok(())
     }
