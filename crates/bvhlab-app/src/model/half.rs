@@ -68,11 +68,20 @@ impl<P: LabPrimitive> Half<P> {
             .lanes()
             .nth(1 - index.min(1))
             .filter(|_| self.compare.is_some());
-        lane_name(
-            &self.lane_at(index).settings,
+        let lane = self.lane_at(index);
+        let mut name = lane_name(
+            &lane.settings,
             other.map(|l| &l.settings),
             <P::Point as bvhlab::Vector>::DIM,
-        )
+        );
+        // Two lanes that differ in how they follow moving primitives (the drifting preset).
+        if other.is_some_and(|o| o.update != lane.update) && lane.settings.kind.is_bvh() {
+            name.push_str(match lane.update {
+                super::refit::UpdateMode::Refit => ", refitted",
+                super::refit::UpdateMode::Rebuild => ", rebuilt",
+            });
+        }
+        name
     }
 
     /// How many lanes are shown.
