@@ -3,6 +3,8 @@
 //! (refits and rebuilds marked apart), the last update's time, and "Rebuild now". The same
 //! section serves both halves ([`update_section`] over a [`Half`]).
 
+use std::fmt::Write as _;
+
 use egui_plot::{AxisHints, Line, MarkerShape, Plot, PlotPoints, Points};
 
 use crate::model::HalfAction;
@@ -125,7 +127,7 @@ fn last_update(how: EditKind, millis: f64, log: &EditLog) -> String {
         })
         .collect();
     if !means.is_empty() {
-        text.push_str(&format!(" ({})", means.join(", ")));
+        let _ = write!(text, " ({})", means.join(", "));
     }
     text
 }
@@ -146,7 +148,7 @@ pub fn millis_text(ms: f64) -> String {
 /// The SAH cost after each update of each lane: a line per lane, refits as small circles,
 /// rebuilds as large diamonds.
 fn cost_plot<P: LabPrimitive>(half: &Half<P>, ui: &mut egui::Ui) {
-    ui.label("SAH cost over the edits (● refit, ◆ rebuild):");
+    ui.label("SAH cost over the edits (dots: refits; diamonds: rebuilds):");
     Plot::new("refit cost")
         .height(110.0)
         .allow_scroll(false)
