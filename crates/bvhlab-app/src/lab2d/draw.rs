@@ -50,6 +50,7 @@ pub(super) fn draw(
             .lane_at(index)
             .current(lab.scene.revision())
             .is_some(),
+        updates: lab.half.lane_at(index).log.total(),
         screen,
         display,
         selection: lab.selection.clone(),

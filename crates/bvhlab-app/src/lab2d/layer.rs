@@ -20,6 +20,9 @@ pub struct LayerKey {
     pub settings: BuildSettings,
     /// Whether the structure was built on this revision (it is drawn only then).
     pub built: bool,
+    /// How many times the lane's structure was updated (built or refitted): "Rebuild now"
+    /// gives a new tree on the same revision.
+    pub updates: u64,
     /// Where it is drawn.
     pub screen: Screen,
     /// The drawing switches (with the structure off while a build is stepped through).

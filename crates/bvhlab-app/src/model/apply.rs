@@ -120,6 +120,11 @@ impl Lab {
     fn tick(&mut self, seconds: f64, build_ms: f64) -> bool {
         match self.dimension {
             Dimension::Two => {
+                // The drifting preset's shapes move, and the lanes refit or rebuild. Not
+                // counted as a change: the motion is not saved frame by frame.
+                if self.two.animate(seconds) {
+                    self.two.refresh();
+                }
                 let len = self.two.half.steps();
                 let moved = self.two.half.playback.advance(seconds, len);
                 if moved {
@@ -202,6 +207,8 @@ where
             }
             None => half.compare = None,
         },
+        HalfAction::SetUpdateMode { lane, mode } => half.set_update_mode(lane, mode)?,
+        HalfAction::RebuildNow => half.rebuild_now(),
         HalfAction::SetTask(task) => half.set_task(task),
         HalfAction::SetVariant(variant) => {
             // The panel offers only the task's versions: one of them is always the one shown

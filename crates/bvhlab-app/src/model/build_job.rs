@@ -17,6 +17,26 @@ use super::structures::{BuildSettings, Built, StructureKind};
 /// inputs up to this size are built in one go.
 const SLICE: usize = 20_000;
 
+/// A run shorter than this is repeated, for [`timed`].
+const MIN_TIMED_MS: f64 = 0.5;
+/// The most runs [`timed`] makes.
+const MAX_TIMED_RUNS: u32 = 100;
+
+/// Runs `work` once, and again while all the runs took less than [`MIN_TIMED_MS`] (at most
+/// [`MAX_TIMED_RUNS`] runs); returns the last run's result and the mean milliseconds per run.
+/// The browser's clock counts in steps of 0.1 ms, too coarse to time one refit or build of a
+/// few hundred segments, which take microseconds; `work` must give the same result every run.
+pub fn timed<T>(mut work: impl FnMut() -> T) -> (T, f64) {
+    let start = Instant::now();
+    let mut runs = 1;
+    let mut out = work();
+    while runs < MAX_TIMED_RUNS && start.elapsed().as_secs_f64() * 1e3 < MIN_TIMED_MS {
+        out = work();
+        runs += 1;
+    }
+    (out, start.elapsed().as_secs_f64() * 1e3 / f64::from(runs))
+}
+
 /// A lane's structure, built, with what the lab reads from it once.
 pub struct Structure<P: LabPrimitive> {
     /// The settings it was built with.
@@ -40,6 +60,10 @@ pub struct Structure<P: LabPrimitive> {
     pub frames: usize,
     /// For leaf colouring: the first leaf listing each primitive (empty without an outline).
     pub leaf_of: Vec<Option<u32>>,
+    /// The SAH cost when it was built (refits leave it: [`Stats::sah_cost`] is the cost now).
+    pub build_sah_cost: Option<f32>,
+    /// How many times it was refitted since it was built.
+    pub refits: usize,
 }
 
 impl<P: LabPrimitive> Structure<P>
@@ -71,6 +95,8 @@ where
             settings,
             revision,
             brute: BruteForce::build(prims),
+            build_sah_cost: stats.sah_cost,
+            refits: 0,
             built,
             outline,
             node_count,
@@ -79,6 +105,35 @@ where
             frames,
             leaf_of,
         }
+    }
+
+    /// Refits a BVH to `prims` (its primitives, moved: the same count) of `revision`: the
+    /// tree keeps its nodes and their primitives, its volumes, outline, statistics and
+    /// baseline follow the primitives. Returns the milliseconds the core's refit took.
+    ///
+    /// # Errors
+    /// Why it was not refitted (a structure other than a BVH, or primitives the tree cannot
+    /// keep), in a sentence; it is then unchanged and must be rebuilt.
+    pub fn refit(&mut self, prims: &[P], revision: u64) -> Result<f64, String> {
+        // Refitting again to the same primitives gives the same tree: timed over repeats.
+        let (refitted, millis) = timed(|| self.built.refit(prims));
+        match refitted {
+            Some(Ok(_)) => {}
+            Some(Err(e)) => return Err(format!("the tree was rebuilt: {e}")),
+            None => {
+                let why = super::refit::refit_refused(self.settings.kind)
+                    .unwrap_or("this structure updates by rebuilding");
+                return Err(why.to_owned());
+            }
+        }
+        self.revision = revision;
+        self.brute = BruteForce::build(prims);
+        if self.outline.is_some() {
+            self.outline = Some(self.built.outline());
+        }
+        self.stats = self.built.stats();
+        self.refits += 1;
+        Ok(millis)
     }
 
     /// What a recording asks questions of, over `prims` (the primitives it was built on).
@@ -170,8 +225,9 @@ where
         let elapsed = |s: &Instant| s.elapsed().as_secs_f64() * 1e3;
         let done = match &mut self.sliced {
             None => {
-                let built = Built::build(prims, &self.settings);
-                self.spent_ms += elapsed(&start);
+                // A build in one go: timed over repeats when it takes microseconds.
+                let (built, millis) = timed(|| Built::build(prims, &self.settings));
+                self.spent_ms += millis;
                 return Some(self.finish(built, prims));
             }
             Some(Sliced::Sphere(job)) => slice(job, &start, budget_ms, &mut self.fraction),

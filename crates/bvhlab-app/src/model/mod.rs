@@ -28,6 +28,7 @@
 //!   scene's edits, to undo and redo.
 
 pub mod action;
+pub mod animation;
 mod apply;
 pub mod build_job;
 pub mod camera2d;
@@ -49,6 +50,7 @@ pub mod predict;
 pub mod presets;
 pub mod question;
 pub mod recording;
+pub mod refit;
 pub mod restore;
 pub mod scene;
 pub mod setup;
@@ -133,6 +135,12 @@ impl Lab {
     /// and holds replies to the embedding page until it is done).
     pub fn busy(&self) -> bool {
         self.dimension == Dimension::Three && self.three.busy()
+    }
+
+    /// Whether the 2D half is shown and its shapes move (the drifting preset): the caller
+    /// keeps repainting.
+    pub fn animating(&self) -> bool {
+        self.dimension == Dimension::Two && self.two.animating()
     }
 
     /// Whether playback runs in the half shown.
