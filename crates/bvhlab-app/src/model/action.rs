@@ -15,6 +15,7 @@ use super::mesh::MeshSource;
 use super::orbit_camera::OrbitCamera;
 use super::presets::Preset;
 use super::question::{Task, Variant};
+use super::refit::UpdateMode;
 use super::restore::Restore;
 use super::scene::ShapeKind;
 use super::structures::BuildSettings;
@@ -144,6 +145,16 @@ pub enum HalfAction {
     SetK(usize),
     /// The range query's radius.
     SetRadius(f32),
+    /// What lane `lane` (0: the structure; 1: the comparison) does when the primitives
+    /// move: rebuild, or refit a BVH ([`super::refit`]).
+    SetUpdateMode {
+        /// 0 for the structure, 1 for the comparison.
+        lane: usize,
+        /// Rebuild or refit.
+        mode: UpdateMode,
+    },
+    /// Rebuilds every lane's structure with its settings now, also in refit mode.
+    RebuildNow,
     /// Moves playback.
     Playback(PlaybackAction),
 }

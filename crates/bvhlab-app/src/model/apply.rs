@@ -202,6 +202,27 @@ where
             }
             None => half.compare = None,
         },
+        HalfAction::SetUpdateMode { lane, mode } => {
+            let target = match (lane, &mut half.compare) {
+                (0, _) => &mut half.lane,
+                (1, Some(other)) => other,
+                (1, None) => {
+                    return Err("there is no comparison structure to set the update of".to_owned());
+                }
+                _ => {
+                    return Err(format!(
+                        "there is no lane {lane}: 0 is the structure, 1 the comparison"
+                    ));
+                }
+            };
+            target.update = mode;
+        }
+        HalfAction::RebuildNow => {
+            half.lane.rebuild_now();
+            if let Some(other) = &mut half.compare {
+                other.rebuild_now();
+            }
+        }
         HalfAction::SetTask(task) => half.set_task(task),
         HalfAction::SetVariant(variant) => {
             // The panel offers only the task's versions: one of them is always the one shown

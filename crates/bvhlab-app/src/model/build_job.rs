@@ -40,6 +40,10 @@ pub struct Structure<P: LabPrimitive> {
     pub frames: usize,
     /// For leaf colouring: the first leaf listing each primitive (empty without an outline).
     pub leaf_of: Vec<Option<u32>>,
+    /// The SAH cost when it was built (refits leave it: [`Stats::sah_cost`] is the cost now).
+    pub build_sah_cost: Option<f32>,
+    /// How many times it was refitted since it was built.
+    pub refits: usize,
 }
 
 impl<P: LabPrimitive> Structure<P>
@@ -71,6 +75,8 @@ where
             settings,
             revision,
             brute: BruteForce::build(prims),
+            build_sah_cost: stats.sah_cost,
+            refits: 0,
             built,
             outline,
             node_count,
@@ -79,6 +85,35 @@ where
             frames,
             leaf_of,
         }
+    }
+
+    /// Refits a BVH to `prims` (its primitives, moved: the same count) of `revision`: the
+    /// tree keeps its nodes and their primitives, its volumes, outline, statistics and
+    /// baseline follow the primitives. Returns the milliseconds the core's refit took.
+    ///
+    /// # Errors
+    /// Why it was not refitted (a structure other than a BVH, or primitives the tree cannot
+    /// keep), in a sentence; it is then unchanged and must be rebuilt.
+    pub fn refit(&mut self, prims: &[P], revision: u64) -> Result<f64, String> {
+        let start = Instant::now();
+        match self.built.refit(prims) {
+            Some(Ok(_)) => {}
+            Some(Err(e)) => return Err(format!("the tree was rebuilt: {e}")),
+            None => {
+                let why = super::refit::refit_refused(self.settings.kind)
+                    .unwrap_or("this structure updates by rebuilding");
+                return Err(why.to_owned());
+            }
+        }
+        let millis = start.elapsed().as_secs_f64() * 1e3;
+        self.revision = revision;
+        self.brute = BruteForce::build(prims);
+        if self.outline.is_some() {
+            self.outline = Some(self.built.outline());
+        }
+        self.stats = self.built.stats();
+        self.refits += 1;
+        Ok(millis)
     }
 
     /// What a recording asks questions of, over `prims` (the primitives it was built on).

@@ -15,6 +15,7 @@ use super::outcome::{NodeMarks, PointOutcome, RayOutcome};
 use super::playback::Playback;
 use super::question::Task;
 use super::recording::{Question, Recording};
+use super::refit::{EditEntry, EditKind, EditLog, UpdateMode};
 use super::snapshot::Snapshot;
 use super::structures::BuildSettings;
 
@@ -49,6 +50,15 @@ pub struct Lane<P: LabPrimitive> {
     pub recording: Option<Result<Recording<P::Point>, String>>,
     /// The recording's state at the playback step.
     pub snapshot: Option<Snapshot<P::Point>>,
+    /// What it does when the primitives move: rebuild, or refit a BVH ([`super::refit`]).
+    pub update: UpdateMode,
+    /// The structure's updates (refits and builds): their times and SAH costs.
+    pub log: EditLog,
+    /// Why the last update in refit mode was a rebuild (a structure that is not a BVH, a
+    /// changed primitive count); `None` after a refit, and in rebuild mode.
+    pub refit_note: Option<String>,
+    /// A rebuild was asked for ("Rebuild now"): the next refresh builds even in refit mode.
+    rebuild_asked: bool,
     /// The question last recorded (also when recording failed, so that a failure is not
     /// retried every frame).
     last_question: Option<Question<P::Point>>,
@@ -66,8 +76,26 @@ impl<P: LabPrimitive> Lane<P> {
             point_outcome: None,
             recording: None,
             snapshot: None,
+            update: UpdateMode::default(),
+            log: EditLog::default(),
+            refit_note: None,
+            rebuild_asked: false,
             last_question: None,
         }
+    }
+
+    /// A lane that will build `settings` on the next refresh and update it by `update`.
+    pub fn with_update(settings: BuildSettings, update: UpdateMode) -> Self {
+        Self {
+            update,
+            ..Self::new(settings)
+        }
+    }
+
+    /// Asks for a rebuild with the current settings at the next refresh, also in refit mode
+    /// ("Rebuild now").
+    pub fn rebuild_now(&mut self) {
+        self.rebuild_asked = true;
     }
 
     /// The structure when it was built with the lane's settings on primitives of
@@ -189,7 +217,11 @@ where
             .as_ref()
             .is_some_and(|j| current(&j.settings, j.revision));
         let mut dropped = false;
-        if !built_ok && !job_ok {
+        let rebuild = std::mem::take(&mut self.rebuild_asked);
+        if !built_ok && !job_ok && !rebuild && self.try_refit(prims, revision) {
+            return true;
+        }
+        if (!built_ok && !job_ok) || rebuild {
             match BuildJob::start(prims, revision, settings) {
                 Ok(job) => {
                     self.job = Some(job);
@@ -215,6 +247,11 @@ where
         if let Some(job) = &mut self.job
             && let Some(structure) = job.run(prims, ms)
         {
+            self.log.push(EditEntry {
+                how: EditKind::Rebuild,
+                sah_cost: structure.stats.sah_cost,
+                millis: structure.build_ms,
+            });
             self.structure = Some(structure);
             self.job = None;
             self.ray_outcome = None;
@@ -224,6 +261,45 @@ where
             dropped = true;
         }
         dropped
+    }
+
+    /// In refit mode, refits the structure built with the lane's settings on older
+    /// primitives to `prims` (of `revision`) instead of building; whether it did (the
+    /// recording is then dropped). When it cannot, [`Lane::refit_note`] says why.
+    fn try_refit(&mut self, prims: &[P], revision: u64) -> bool {
+        if self.update != UpdateMode::Refit {
+            self.refit_note = None;
+            return false;
+        }
+        let settings = self.settings;
+        let Some(structure) = self
+            .structure
+            .as_mut()
+            .filter(|s| s.settings == settings && s.revision != revision)
+        else {
+            return false;
+        };
+        match structure.refit(prims, revision) {
+            Ok(millis) => {
+                self.log.push(EditEntry {
+                    how: EditKind::Refit,
+                    sah_cost: structure.stats.sah_cost,
+                    millis,
+                });
+                self.refit_note = None;
+                self.job = None;
+                self.build_error = None;
+                self.ray_outcome = None;
+                self.point_outcome = None;
+                self.recording = None;
+                self.snapshot = None;
+                true
+            }
+            Err(why) => {
+                self.refit_note = Some(why);
+                false
+            }
+        }
     }
 
     /// Updates the snapshot to the playback's step (in live mode: this lane's end).

@@ -49,6 +49,7 @@ pub mod predict;
 pub mod presets;
 pub mod question;
 pub mod recording;
+pub mod refit;
 pub mod restore;
 pub mod scene;
 pub mod setup;

@@ -16,6 +16,7 @@ use super::mesh::MeshSource;
 use super::playback::Playback;
 use super::presets::Preset;
 use super::question::{Task, Variant};
+use super::refit::UpdateMode;
 use super::scene::Scene;
 use super::structures::BuildSettings;
 use super::volumes::VolumeToggles;
@@ -27,6 +28,8 @@ pub struct RestoreHalf {
     pub settings: BuildSettings,
     /// The comparison structure's, when two are shown.
     pub compare: Option<BuildSettings>,
+    /// What the structure and the comparison do when the primitives move.
+    pub update: [UpdateMode; 2],
     /// What is stepped through.
     pub task: Task,
     /// Which version of the algorithm.
@@ -121,8 +124,11 @@ impl PartialEq for Restore {
 impl RestoreHalf {
     /// Writes the structures, question and playback into `half` (keeping its speed).
     fn write<P: super::dimension::LabPrimitive>(self, half: &mut Half<P>) {
-        half.lane = Lane::new(self.settings);
-        half.compare = self.compare.map(Lane::new);
+        let [update, compare_update] = self.update;
+        half.lane = Lane::with_update(self.settings, update);
+        half.compare = self
+            .compare
+            .map(|settings| Lane::with_update(settings, compare_update));
         half.task = self.task;
         half.variant = self.variant;
         // A file may name a version the task lacks: the full one runs, and is shown.

@@ -16,6 +16,7 @@ use serde::de::Error as _;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use crate::model::presets::Preset;
+use crate::model::refit::UpdateMode;
 use crate::model::scene::ShapeKind;
 use crate::model::structures::{KdSplit, StructureKind};
 use crate::pseudocode::{Task, Variant};
@@ -111,6 +112,31 @@ stable_names! {
         MedianRoundRobin = "median-round-robin",
         MedianLongest = "median-longest",
         Sah = "sah",
+    }
+}
+
+stable_names! {
+    /// What a lane does when the primitives move, as stored.
+    UpdateName <=> UpdateMode {
+        Rebuild = "rebuild",
+        Refit = "refit",
+    }
+}
+
+impl Default for UpdateName {
+    fn default() -> Self {
+        UpdateMode::default().into()
+    }
+}
+
+impl UpdateName {
+    /// Whether it is the default (rebuild), which files leave out.
+    #[expect(
+        clippy::trivially_copy_pass_by_ref,
+        reason = "serde's skip_serializing_if passes a reference"
+    )]
+    pub fn is_default(&self) -> bool {
+        *self == Self::default()
     }
 }
 

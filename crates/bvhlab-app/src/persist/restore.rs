@@ -85,6 +85,12 @@ fn checked(state: &SavedState) -> Result<Restore, String> {
             .as_ref()
             .map(|c| settings("the comparison structure", c))
             .transpose()?,
+        update: [
+            state.structure.update.into(),
+            state
+                .compare
+                .map_or_else(Default::default, |c| c.update.into()),
+        ],
         task: state.task.into(),
         variant: state.variant.into(),
         k: state.k,

@@ -13,12 +13,13 @@ use serde::{Deserialize, Serialize};
 use crate::model::Lab;
 use crate::model::camera2d::Camera2d;
 use crate::model::lab2d::{Display, RayHandles};
+use crate::model::lane::Lane;
 use crate::model::structures::BuildSettings;
 use crate::model::volumes::VolumeToggles;
 
 use super::names::{
     Coord, KdSplitName, PresetSlug, ShapeName, SphereFitName, SplitName, StoredPoint,
-    StructureName, TaskName, VariantName,
+    StructureName, TaskName, UpdateName, VariantName,
 };
 use super::state3d::ThreeState;
 
@@ -178,6 +179,20 @@ pub struct SettingsState {
     pub grid_cells: u32,
     /// Quadtree depth limit.
     pub quadtree_depth: usize,
+    /// What the lane does when the primitives move (left out when it rebuilds, as files
+    /// from before refitting do).
+    #[serde(skip_serializing_if = "UpdateName::is_default")]
+    pub update: UpdateName,
+}
+
+impl SettingsState {
+    /// A lane's build settings and update mode.
+    pub fn of_lane<P: crate::model::dimension::LabPrimitive>(lane: &Lane<P>) -> Self {
+        Self {
+            update: lane.update.into(),
+            ..lane.settings.into()
+        }
+    }
 }
 
 impl From<BuildSettings> for SettingsState {
@@ -190,6 +205,7 @@ impl From<BuildSettings> for SettingsState {
             kd_split: s.kd_split.into(),
             grid_cells: s.grid_cells,
             quadtree_depth: s.quadtree_depth,
+            update: UpdateName::default(),
         }
     }
 }
@@ -394,8 +410,8 @@ impl SavedState {
                     .collect(),
             ),
             selection: two.selection.clone(),
-            structure: half.lane.settings.into(),
-            compare: half.compare.as_ref().map(|lane| lane.settings.into()),
+            structure: SettingsState::of_lane(&half.lane),
+            compare: half.compare.as_ref().map(SettingsState::of_lane),
             display: two.display.into(),
             volumes: two.volumes.into(),
             ray: two.ray.map(|r: RayHandles| RayState {

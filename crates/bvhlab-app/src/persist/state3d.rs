@@ -155,7 +155,7 @@ impl ThreeState {
         Self {
             shown: whole.dimension() == Dimension::Three,
             mesh,
-            structure: half.lane.settings.into(),
+            structure: SettingsState::of_lane(&half.lane),
             camera: camera.as_ref().map(camera_state),
             ray: ray.map(|r| Ray3State {
                 origin: stored3(r.origin()),
@@ -163,7 +163,7 @@ impl ThreeState {
             }),
             point: point.map(stored3),
             radius: radius.map(Coord),
-            compare: half.compare.as_ref().map(|l| l.settings.into()),
+            compare: half.compare.as_ref().map(SettingsState::of_lane),
             task: Some(half.task.into()),
             variant: Some(half.variant.into()),
             k: Some(half.k),
@@ -254,6 +254,12 @@ impl Checked3d {
                 half: RestoreHalf {
                     settings,
                     compare,
+                    update: [
+                        state.structure.update.into(),
+                        state
+                            .compare
+                            .map_or_else(Default::default, |c| c.update.into()),
+                    ],
                     task: state.task.map_or(two.task, Into::into),
                     variant: state.variant.map_or(two.variant, Into::into),
                     k,
