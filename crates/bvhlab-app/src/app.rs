@@ -136,7 +136,7 @@ impl LabApp {
         if self.apply_from_ui(actions) {
             ui.ctx().request_repaint();
         }
-        if self.lab.playing() || self.lab.busy() {
+        if self.lab.playing() || self.lab.busy() || self.lab.animating() {
             ui.ctx().request_repaint();
         }
         self.report = Report::of(&self.lab, &self.ui);
