@@ -10,6 +10,8 @@
 // answer as brute force) and that the ray changed the picture along the drag line. Any console
 // error, page error or request to another host fails the run. Screenshots go to target/e2e/.
 // It also prints the page's frame rate while dragging (software rendering: informative only).
+// Once more on WebGL2, it opens the drifting preset and checks that the report gives the
+// refitted structure's and the rebuilt comparison's times frame by frame.
 
 import { mkdirSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
@@ -296,6 +298,61 @@ async function runOne({ renderer, label, search = '', primitives, args }) {
   }
 }
 
+// The drifting preset (refit against rebuild, issue text "an animated preset shows refit
+// against rebuild frame by frame with their times"): opened through the address, its shapes
+// move every frame, the structure is refitted and the comparison rebuilt, and the report gives
+// both lanes' times.
+async function driftingRefit() {
+  const label = 'WebGL2-drifting';
+  const profile = mkdtempSync(join(tmpdir(), 'bvhlab-e2e-'));
+  const problems = [];
+  const context = await chromium.launchPersistentContext(profile, {
+    executablePath,
+    headless: true,
+    args: BASE_ARGS,
+    viewport: VIEWPORT,
+    deviceScaleFactor: 1,
+  });
+  try {
+    const page = context.pages()[0] ?? (await context.newPage());
+    page.on('console', (message) => {
+      if (message.type() === 'error') problems.push(`console error: ${message.text()}`);
+    });
+    page.on('pageerror', (error) => problems.push(`page error: ${error.message}`));
+    await page.goto(`${url}?preset=drifting-shapes`, { waitUntil: 'load' });
+    const { report } = await waitForReport(
+      page,
+      (r) => r.ready && r.updates?.length === 2 && r.updates[0].refits >= 10 && r.updates[1].rebuilds >= 10,
+      READY_TIMEOUT_MS,
+      'ten frames of refits beside rebuilds',
+    );
+    const [refitted, rebuilt] = report.updates;
+    check(
+      refitted.mode === 'refit' && refitted.last === 'refit' && Number.isFinite(refitted.refit_ms),
+      `the structure is refitted every frame, with its time: ${JSON.stringify(refitted)}`,
+    );
+    check(
+      rebuilt.mode === 'rebuild' && rebuilt.last === 'rebuild' && Number.isFinite(rebuilt.rebuild_ms),
+      `the comparison is rebuilt every frame, with its time: ${JSON.stringify(rebuilt)}`,
+    );
+    check(
+      refitted.structure.includes('refitted') && rebuilt.structure.includes('rebuilt'),
+      `the lanes are named by how they update: ${refitted.structure}, ${rebuilt.structure}`,
+    );
+    const shot = await screenshot(page, `${label}.png`);
+    check(problems.length === 0, `the page reported problems:\n  ${problems.join('\n  ')}`);
+    return {
+      label,
+      refit: `${refitted.refits} refits, ${refitted.refit_ms.toFixed(3)} ms each on average, SAH cost ${refitted.cost_ratio?.toFixed(2)}x the last build's`,
+      rebuild: `${rebuilt.rebuilds} rebuilds, ${rebuilt.rebuild_ms.toFixed(3)} ms each on average`,
+      screenshot: show(shot.path),
+    };
+  } finally {
+    await context.close().catch(() => {});
+    rmSync(profile, { recursive: true, force: true });
+  }
+}
+
 const STORAGE_KEY = 'bvh-lab/state/v1';
 
 /// The lab's state as the report shows it: what must survive a reload or a link.
@@ -386,6 +443,14 @@ for (const run of RUNS) {
     failed++;
     console.log(`FAILED ${run.label}: ${error instanceof Failure ? error.message : error.stack}`);
   }
+}
+try {
+  const drifting = await driftingRefit();
+  passed++;
+  console.log(`ok ${drifting.label}: ${drifting.refit}; beside it ${drifting.rebuild} (${drifting.screenshot})`);
+} catch (error) {
+  failed++;
+  console.log(`FAILED WebGL2-drifting: ${error instanceof Failure ? error.message : error.stack}`);
 }
 writeFileSync(join(outDir, 'summary.json'), `${JSON.stringify(results, null, 2)}\n`);
 console.log(`e2e: ${passed} passed, ${failed} failed`);

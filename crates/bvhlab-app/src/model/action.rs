@@ -102,6 +102,8 @@ pub enum Action2d {
     SetVolumes(VolumeToggles),
     /// The two boxes of the separating-axis demo.
     SetObbPair(ObbPair),
+    /// Starts or stops the drifting preset's motion (refused on the other presets).
+    SetAnimate(bool),
 }
 
 /// A change of the 3D half.

@@ -120,6 +120,11 @@ impl Lab {
     fn tick(&mut self, seconds: f64, build_ms: f64) -> bool {
         match self.dimension {
             Dimension::Two => {
+                // The drifting preset's shapes move, and the lanes refit or rebuild. Not
+                // counted as a change: the motion is not saved frame by frame.
+                if self.two.animate(seconds) {
+                    self.two.refresh();
+                }
                 let len = self.two.half.steps();
                 let moved = self.two.half.playback.advance(seconds, len);
                 if moved {
@@ -202,27 +207,8 @@ where
             }
             None => half.compare = None,
         },
-        HalfAction::SetUpdateMode { lane, mode } => {
-            let target = match (lane, &mut half.compare) {
-                (0, _) => &mut half.lane,
-                (1, Some(other)) => other,
-                (1, None) => {
-                    return Err("there is no comparison structure to set the update of".to_owned());
-                }
-                _ => {
-                    return Err(format!(
-                        "there is no lane {lane}: 0 is the structure, 1 the comparison"
-                    ));
-                }
-            };
-            target.update = mode;
-        }
-        HalfAction::RebuildNow => {
-            half.lane.rebuild_now();
-            if let Some(other) = &mut half.compare {
-                other.rebuild_now();
-            }
-        }
+        HalfAction::SetUpdateMode { lane, mode } => half.set_update_mode(lane, mode)?,
+        HalfAction::RebuildNow => half.rebuild_now(),
         HalfAction::SetTask(task) => half.set_task(task),
         HalfAction::SetVariant(variant) => {
             // The panel offers only the task's versions: one of them is always the one shown

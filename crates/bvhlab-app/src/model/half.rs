@@ -11,6 +11,7 @@ use super::lane_name::lane_name;
 use super::playback::Playback;
 use super::question::{Task, Variant};
 use super::recording::Question;
+use super::refit::UpdateMode;
 use super::structures::{BuildSettings, StructureKind};
 use crate::pseudocode::variants;
 
@@ -68,11 +69,20 @@ impl<P: LabPrimitive> Half<P> {
             .lanes()
             .nth(1 - index.min(1))
             .filter(|_| self.compare.is_some());
-        lane_name(
-            &self.lane_at(index).settings,
+        let lane = self.lane_at(index);
+        let mut name = lane_name(
+            &lane.settings,
             other.map(|l| &l.settings),
             <P::Point as bvhlab::Vector>::DIM,
-        )
+        );
+        // Two lanes that differ in how they follow moving primitives (the drifting preset).
+        if other.is_some_and(|o| o.update != lane.update) && lane.settings.kind.is_bvh() {
+            name.push_str(match lane.update {
+                UpdateMode::Refit => ", refitted",
+                UpdateMode::Rebuild => ", rebuilt",
+            });
+        }
+        name
     }
 
     /// How many lanes are shown.
@@ -123,6 +133,36 @@ impl<P: LabPrimitive> Half<P> {
     pub fn ask_about_point(&mut self) {
         if !matches!(self.task, Task::Nearest | Task::Range) {
             self.set_task(Task::Nearest);
+        }
+    }
+
+    /// Sets what lane `lane` (0: the structure, 1: the comparison) does when the
+    /// primitives move.
+    ///
+    /// # Errors
+    /// When there is no such lane.
+    pub fn set_update_mode(&mut self, lane: usize, mode: UpdateMode) -> Result<(), String> {
+        let target = match (lane, &mut self.compare) {
+            (0, _) => &mut self.lane,
+            (1, Some(other)) => other,
+            (1, None) => {
+                return Err("there is no comparison structure to set the update of".to_owned());
+            }
+            _ => {
+                return Err(format!(
+                    "there is no lane {lane}: 0 is the structure, 1 the comparison"
+                ));
+            }
+        };
+        target.update = mode;
+        Ok(())
+    }
+
+    /// Rebuilds every lane's structure at the next refresh, also in refit mode.
+    pub fn rebuild_now(&mut self) {
+        self.lane.rebuild_now();
+        if let Some(other) = &mut self.compare {
+            other.rebuild_now();
         }
     }
 

@@ -8,6 +8,7 @@ use bvhlab::{Ray2, Segment2};
 
 use super::Note;
 use super::action::Action2d;
+use super::animation::{Animation, edits_scene, preset_lanes};
 use super::camera2d::Camera2d;
 use super::half::Half;
 use super::history::{Edit, History, PresetSetup, SceneState};
@@ -98,6 +99,8 @@ pub struct Lab2d {
     pub obb_pair: Option<ObbPair>,
     /// The structures, the question and playback.
     pub half: Half<Segment2>,
+    /// The drifting preset's motion (`None` for the other presets).
+    pub animation: Option<Animation>,
     /// The scene edits that can be undone and redone.
     pub(super) history: History,
     /// The scene's primitives, derived once per scene revision.
@@ -118,7 +121,7 @@ impl Lab2d {
     /// The 2D half opened on `preset`, with nothing to undo.
     pub fn with_preset(preset: Preset) -> Self {
         let (scene, settings) = preset.build();
-        Self {
+        let mut lab = Self {
             scene,
             preset,
             selection: Vec::new(),
@@ -131,12 +134,16 @@ impl Lab2d {
             volumes: VolumeToggles::default(),
             obb_pair: None,
             half: Half::new(settings, 3.0),
+            animation: None,
             history: History::default(),
             prims: Primitives::default(),
             prims_revision: None,
             fits: None,
             fits_key: None,
-        }
+        };
+        lab.animation = Animation::for_preset(preset);
+        preset_lanes(&mut lab.half, Preset::default(), preset);
+        lab
     }
 }
 
@@ -204,9 +211,11 @@ impl Lab2d {
     /// do not bury the next idea. The bounding-volume preset shows its volumes.
     fn load_preset(&mut self, preset: Preset) {
         let (scene, settings) = preset.build();
-        self.preset = preset;
+        let old = std::mem::replace(&mut self.preset, preset);
         self.scene = scene;
         self.half.lane.settings = settings;
+        preset_lanes(&mut self.half, old, preset);
+        self.animation = Animation::for_preset(preset);
         self.selection.clear();
         self.ray = None;
         self.point = None;
@@ -232,6 +241,9 @@ impl Lab2d {
             // A drag's moves are one edit, until anything else happens.
             self.history.close_move();
         }
+        if edits_scene(&action) {
+            self.stop_animation();
+        }
         match action {
             Action2d::SetTool(tool) => {
                 if tool == Tool::Obb && self.obb_pair.is_none() {
@@ -254,6 +266,7 @@ impl Lab2d {
             }
             Action2d::Undo => return self.undo(),
             Action2d::Redo => return self.redo(),
+            Action2d::SetAnimate(on) => return self.set_animate(on),
             Action2d::Clear
             | Action2d::AddShape { .. }
             | Action2d::AddToCloud { .. }

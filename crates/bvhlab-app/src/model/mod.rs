@@ -28,6 +28,7 @@
 //!   scene's edits, to undo and redo.
 
 pub mod action;
+pub mod animation;
 mod apply;
 pub mod build_job;
 pub mod camera2d;
@@ -137,10 +138,14 @@ impl Lab {
         self.dimension == Dimension::Three && self.three.busy()
     }
 
-    /// Whether the 3D half is shown and its mesh moves (the caller keeps repainting; replies
-    /// to the embedding page do not wait for it to stop).
+    /// Whether the half shown moves: the 2D drifting preset's shapes, or the 3D mesh that
+    /// moves. The caller keeps repainting; replies to the embedding page do not wait for it
+    /// to stop.
     pub fn animating(&self) -> bool {
-        self.dimension == Dimension::Three && self.three.moving()
+        match self.dimension {
+            Dimension::Two => self.two.animating(),
+            Dimension::Three => self.three.moving(),
+        }
     }
 
     /// Whether playback runs in the half shown.

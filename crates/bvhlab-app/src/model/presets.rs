@@ -1,6 +1,7 @@
 //! Ready-made scenes: the lecture's figures and random scenes of several sizes.
 
 use bvhlab::glam::Vec2;
+use bvhlab::structure::SplitMethod;
 
 use super::scene::{Scene, Shape, ShapeKind};
 use super::structures::{BuildSettings, KdSplit, StructureKind};
@@ -21,6 +22,9 @@ pub enum Preset {
     KdHandful,
     /// §3: a quadtree on a handful of shapes.
     QuadtreeHandful,
+    /// §3: shapes that drift and turn while playing, an AABB tree refitted beside one rebuilt
+    /// every frame ([`drifting_shapes`]).
+    Drifting,
     /// 200 random segments.
     RandomSegments,
     /// 300 random points.
@@ -31,12 +35,13 @@ pub enum Preset {
 
 impl Preset {
     /// Every preset, in menu order.
-    pub const ALL: [Self; 8] = [
+    pub const ALL: [Self; 9] = [
         Self::BoundingVolumes,
         Self::DuplicateTriangle,
         Self::BvhHandful,
         Self::KdHandful,
         Self::QuadtreeHandful,
+        Self::Drifting,
         Self::RandomSegments,
         Self::RandomPoints,
         Self::TenThousand,
@@ -50,6 +55,7 @@ impl Preset {
             Self::BvhHandful => "AABB tree on a handful of shapes (§3)",
             Self::KdHandful => "k-d tree on a handful of shapes (§3)",
             Self::QuadtreeHandful => "Quadtree on a handful of shapes (§3)",
+            Self::Drifting => "Shapes that drift and turn: refit against rebuild (§3)",
             Self::RandomSegments => "200 random segments",
             Self::RandomPoints => "300 random points",
             Self::TenThousand => "10,000 random segments",
@@ -64,6 +70,7 @@ impl Preset {
             Self::BvhHandful => "aabb-tree",
             Self::KdHandful => "kd-tree",
             Self::QuadtreeHandful => "quadtree",
+            Self::Drifting => "drifting-shapes",
             Self::RandomSegments => "random-segments",
             Self::RandomPoints => "random-points",
             Self::TenThousand => "10k",
@@ -110,6 +117,15 @@ impl Preset {
                 BuildSettings {
                     kind: StructureKind::Quadtree,
                     leaf_size: 1,
+                    ..settings
+                },
+            ),
+            Self::Drifting => (
+                Scene::from_shapes(drifting_shapes(0.0)),
+                BuildSettings {
+                    kind: StructureKind::AabbTree,
+                    bvh_split: SplitMethod::BinnedSah,
+                    leaf_size: 2,
                     ..settings
                 },
             ),
@@ -192,6 +208,50 @@ fn handful() -> Scene {
         shape(ShapeKind::Points, &[[5.0, 8.4], [6.2, 8.0], [9.0, 3.5]]),
         shape(ShapeKind::Polygon, &[[7.6, 4.0], [8.6, 4.2], [8.2, 5.0]]),
     ])
+}
+
+/// How many triangles drift in [`drifting_shapes`].
+pub const DRIFTING: usize = 48;
+/// The side of the square they drift in.
+const DRIFT_BOX: f32 = 20.0;
+
+/// The drifting preset's shapes `t` seconds into the animation: [`DRIFTING`] small
+/// triangles, each with its own (seeded) start, velocity and spin, bouncing inside a square
+/// of side 20. The same `t` gives the same shapes on every machine.
+pub fn drifting_shapes(t: f32) -> Vec<Shape> {
+    let mut rng = SplitMix(7);
+    // Where `x` is after bouncing between 0 and the box's side.
+    let bounce = |x: f32| {
+        let m = x.rem_euclid(2.0 * DRIFT_BOX);
+        if m <= DRIFT_BOX {
+            m
+        } else {
+            2.0 * DRIFT_BOX - m
+        }
+    };
+    (0..DRIFTING)
+        .map(|_| {
+            let start = Vec2::new(
+                rng.range(1.0, DRIFT_BOX - 1.0),
+                rng.range(1.0, DRIFT_BOX - 1.0),
+            );
+            let velocity =
+                Vec2::from_angle(rng.range(0.0, std::f32::consts::TAU)) * rng.range(0.8, 3.0);
+            let spin = rng.range(-2.0, 2.0);
+            let size = rng.range(0.5, 1.1);
+            let turn = rng.range(0.0, std::f32::consts::TAU) + spin * t;
+            let p = start + velocity * t;
+            let centre = Vec2::new(bounce(p.x), bounce(p.y));
+            let points = [0.0f32, 2.3, 4.1]
+                .into_iter()
+                .map(|a| centre + Vec2::from_angle(turn + a) * size)
+                .collect();
+            Shape {
+                kind: ShapeKind::Polygon,
+                points,
+            }
+        })
+        .collect()
 }
 
 /// `n` segments of length up to `length` in a square of side `extent`.

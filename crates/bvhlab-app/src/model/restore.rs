@@ -155,6 +155,8 @@ impl Restore2d {
         lab.point = self.point;
         lab.camera = self.camera;
         lab.fit_pending = false;
+        // A saved drifting scene comes back still ("Animate" starts it again).
+        lab.animation = (lab.preset == Preset::Drifting).then(Default::default);
         // Undoing an edit made before would bring back a scene of another state.
         lab.history = super::history::History::default();
     }

@@ -19,6 +19,7 @@ pub mod predict;
 pub mod queries;
 pub mod ray_point;
 pub mod recording;
+pub mod refit;
 pub mod save_share;
 pub mod scene;
 pub mod split;

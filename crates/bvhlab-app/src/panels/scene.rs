@@ -54,6 +54,17 @@ impl Panel for Scene {
                 cx.act(Action2d::Clear);
             }
         });
+        if let Some(animation) = lab.animation {
+            let mut on = animation.on;
+            ui.horizontal(|ui| {
+                ui.checkbox(&mut on, "Animate")
+                    .on_hover_text("The shapes drift and turn; editing the scene stops them");
+                ui.label(format!("{:.1} s", animation.time));
+            });
+            if on != animation.on {
+                cx.act(Action2d::SetAnimate(on));
+            }
+        }
         ui.horizontal(|ui| {
             let history = lab.history();
             let undo = ui

@@ -28,6 +28,7 @@ impl Panel for Structure2d {
             cx.act(HalfAction::SetStructure(settings));
         }
         structure_display(cx, ui);
+        super::refit::update_section(cx, &lab.half, lab.scene.revision(), "shapes", ui);
     }
 }
 

@@ -3,6 +3,7 @@
 
 pub mod motion;
 pub mod predict;
+pub mod update;
 
 use std::fmt::Write as _;
 
@@ -35,6 +36,9 @@ pub struct Report {
     pub playback: Vec<PlaybackReport>,
     /// The 3D view, when it is shown.
     pub three: Option<Report3d>,
+    /// How the half shown's lanes follow moving primitives: refit or rebuild, and their
+    /// times (lanes never updated are left out).
+    pub updates: Vec<update::UpdateReport>,
     /// The status line's message, when there is one (a file or link that could not be
     /// opened, and what was kept).
     pub message: Option<String>,
@@ -298,6 +302,11 @@ impl Report {
                 two.half.lanes().filter_map(PlaybackReport::of).collect()
             },
             three: three.then(|| Report3d::of(lab, ui)),
+            updates: if three {
+                update::UpdateReport::of_half(&lab.three().half)
+            } else {
+                update::UpdateReport::of_half(&two.half)
+            },
             frame_ms: ui.clock.median_ms(),
             cpu_ms: ui.clock.median_cpu_ms(),
         }
