@@ -48,7 +48,7 @@ impl Motion {
     /// Moves `mesh` on by `seconds` (at most [`MAX_STEP_SECONDS`]) when it moves and the
     /// motion is on, giving it `revision`. Whether it moved.
     pub fn advance(&mut self, mesh: &mut Mesh3d, seconds: f64, revision: u64) -> bool {
-        if !self.on || !moves(mesh) || !(seconds.is_finite() && seconds > 0.0) {
+        if !(self.on && moves(mesh) && seconds.is_finite() && seconds > 0.0) {
             return false;
         }
         let at = self.seconds + seconds.min(MAX_STEP_SECONDS);
