@@ -1,5 +1,6 @@
 //! The meshes the lab offers without a file: simple shapes with known answers, a scanned
-//! model, and one large enough to time a structure's build at a million triangles.
+//! model, one large enough to time a structure's build at a million triangles, and one that
+//! moves ([`deforms`], [`make_at`]), for refitting a tree every frame.
 //!
 //! Each is listed once in [`list`] (what a menu shows) and made by [`make`]. The random ones
 //! take a fixed seed, so every student, test and benchmark sees the same triangles; the
@@ -11,6 +12,7 @@ mod lumpy_sphere;
 mod random;
 mod tetrahedra;
 mod torus;
+mod twisting_torus;
 mod uv_sphere;
 
 use bvhlab::Mesh;
@@ -19,6 +21,7 @@ pub use self::cube::cube;
 pub use self::lumpy_sphere::lumpy_sphere;
 pub use self::tetrahedra::tetrahedra;
 pub use self::torus::torus;
+pub use self::twisting_torus::twisting_torus;
 pub use self::uv_sphere::uv_sphere;
 
 /// A built-in mesh, as a menu shows it.
@@ -37,7 +40,7 @@ pub const TETRAHEDRA_SEED: u64 = 418;
 /// The seed of the built-in lumpy sphere.
 pub const LUMPY_SPHERE_SEED: u64 = 2504;
 
-const BUILTINS: [Builtin; 6] = [
+const BUILTINS: [Builtin; 7] = [
     Builtin {
         slug: "cube",
         name: "Cube",
@@ -74,7 +77,19 @@ const BUILTINS: [Builtin; 6] = [
         about: "1,000,000 triangles: a sphere pushed in and out by random waves, to time \
                 builds and queries at scale",
     },
+    Builtin {
+        slug: TWISTING_TORUS,
+        name: "Twisting torus (moves)",
+        about: "4,096 triangles of a flattened torus that twists and ripples as time passes: \
+                the tree is refitted (or rebuilt) every frame",
+    },
 ];
+
+/// The slug of the built-in mesh that moves.
+pub const TWISTING_TORUS: &str = "twisting-torus";
+
+/// The twisting torus's steps around its axis and around its tube.
+const TWISTING_TORUS_GRID: (u32, u32) = (64, 32);
 
 /// Every built-in mesh, in menu order.
 pub fn list() -> &'static [Builtin] {
@@ -93,8 +108,22 @@ pub fn make(slug: &str) -> Option<Mesh> {
         "tetrahedra" => Some(tetrahedra(500, TETRAHEDRA_SEED)),
         "bunny" => Some(bunny::bunny()),
         "lumpy-sphere" => Some(lumpy_sphere(1000, 501, LUMPY_SPHERE_SEED)),
-        _ => None,
+        _ => make_at(slug, 0.0),
     }
+}
+
+/// Whether the built-in mesh `slug` moves: [`make_at`] gives it at any time.
+pub fn deforms(slug: &str) -> bool {
+    slug == TWISTING_TORUS
+}
+
+/// The built-in mesh `slug` that moves, `seconds` into its motion (`None` for a slug that
+/// does not move). A pure function of the time: the same triangles for the same time, with
+/// the same indices at every time (only the vertices move), so a tree built on one time can be
+/// refitted to another.
+pub fn make_at(slug: &str, seconds: f64) -> Option<Mesh> {
+    let (rings, sides) = TWISTING_TORUS_GRID;
+    deforms(slug).then(|| twisting_torus(rings, sides, seconds))
 }
 
 /// The mesh of generated vertices and triangles. Generators make only finite vertices and

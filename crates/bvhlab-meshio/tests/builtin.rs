@@ -50,7 +50,7 @@ fn grouped(n: usize) -> String {
 #[test]
 fn every_listed_mesh_is_made_non_empty_and_finite() {
     let list = builtin::list();
-    assert_eq!(list.len(), 6);
+    assert_eq!(list.len(), 7);
     for entry in list {
         let mesh = builtin::make(entry.slug).unwrap_or_else(|| panic!("{} is listed", entry.slug));
         assert!(!mesh.is_empty(), "{}", entry.slug);
@@ -187,4 +187,45 @@ fn generators_clamp_degenerate_sizes() {
     assert!(closed(&builtin::uv_sphere(1, 1)));
     assert_eq!(builtin::torus(1, 2, 0.2).len(), 2 * 3 * 3);
     assert!(builtin::tetrahedra(0, 1).is_empty());
+}
+
+#[test]
+fn the_twisting_torus_is_a_closed_function_of_time_with_fixed_indices() {
+    let slug = builtin::TWISTING_TORUS;
+    assert!(builtin::deforms(slug) && !builtin::deforms("torus"));
+    assert!(builtin::make_at("torus", 1.0).is_none());
+    assert_eq!(builtin::make(slug), builtin::make_at(slug, 0.0));
+    let start = builtin::make_at(slug, 0.0).expect("it moves");
+    assert_eq!((start.len(), start.positions().len()), (4_096, 2_048));
+    for seconds in [0.0, 0.25, 1.7, 12.5, 3_600.0] {
+        let mesh = builtin::make_at(slug, seconds).expect("it moves");
+        assert_eq!(
+            mesh,
+            builtin::make_at(slug, seconds).expect("again"),
+            "{seconds} s"
+        );
+        assert_eq!(mesh.indices(), start.indices(), "only the vertices move");
+        assert!(mesh.positions().iter().all(|p| p.is_finite()));
+        assert!(closed(&mesh), "{seconds} s");
+        assert!(volume(&mesh) > 0.0, "wound outward at {seconds} s");
+        assert_eq!(mesh.summary().degenerate_triangles, 0, "{seconds} s");
+        // The ring stays around the axis: no vertex crosses it.
+        assert!(
+            mesh.positions()
+                .iter()
+                .all(|p| (p.x * p.x + p.z * p.z).sqrt() > 0.4),
+            "{seconds} s"
+        );
+    }
+    let later = builtin::make_at(slug, 0.5).expect("it moves");
+    let moved = start
+        .positions()
+        .iter()
+        .zip(later.positions())
+        .filter(|(a, b)| a.distance(**b) > 1e-3)
+        .count();
+    assert!(
+        moved > 2_000 / 2,
+        "half a second moves most vertices: {moved}"
+    );
 }

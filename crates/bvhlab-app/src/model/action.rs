@@ -129,6 +129,9 @@ pub enum Action3d {
     SetDisplay(Display3d),
     /// The heat map's settings.
     SetHeat(HeatSettings),
+    /// Starts or stops the motion of a mesh that moves (the twisting torus): while on, each
+    /// frame moves it on and its structures follow.
+    Animate(bool),
 }
 
 /// A change of the structures, question or playback of the half shown.

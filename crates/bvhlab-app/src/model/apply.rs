@@ -134,7 +134,7 @@ impl Lab {
             }
             Dimension::Three => {
                 let loading = self.three.pending.is_some();
-                self.three.tick(build_ms);
+                self.three.tick(seconds, build_ms);
                 let len = self.three.half.steps();
                 let moved = self.three.half.playback.advance(seconds, len);
                 if moved {

@@ -15,7 +15,9 @@ use super::half::Half;
 use super::heat::HeatSettings;
 use super::lane::BuildBudget;
 use super::mesh::{self, Mesh3d, MeshSource};
+use super::motion::{self, Motion};
 use super::orbit_camera::OrbitCamera;
+use super::refit::UpdateMode;
 use super::structures::{BuildSettings, StructureKind};
 use super::tools::Tool3d;
 
@@ -104,6 +106,8 @@ pub struct Lab3d {
     pub message: Option<String>,
     /// The structures, the question and playback.
     pub half: Half<Triangle3>,
+    /// The motion of a mesh that moves ([`motion`]).
+    pub motion: Motion,
     revisions: u64,
 }
 
@@ -130,6 +134,7 @@ impl Default for Lab3d {
                 },
                 0.1,
             ),
+            motion: Motion::default(),
             revisions: 0,
         }
     }
@@ -152,6 +157,11 @@ impl Lab3d {
         self.mesh.as_ref().map_or(&[], |m| m.mesh.triangles())
     }
 
+    /// Whether the mesh shown moves and its animation is on (the caller keeps repainting).
+    pub fn moving(&self) -> bool {
+        self.motion.on && self.pending.is_none() && self.mesh.as_ref().is_some_and(motion::moves)
+    }
+
     /// The mesh's revision (0 before one loads).
     pub fn revision(&self) -> u64 {
         self.mesh.as_ref().map_or(0, |m| m.revision)
@@ -162,11 +172,15 @@ impl Lab3d {
         self.triangles().get(index as usize).copied()
     }
 
-    /// Loads a mesh asked for and gives the builds `build_ms` milliseconds (a frame's
-    /// work), then brings the recordings up to date.
-    pub(super) fn tick(&mut self, build_ms: f64) {
+    /// Loads a mesh asked for, moves a mesh that moves on by `seconds`, and gives the builds
+    /// `build_ms` milliseconds (a frame's work), then brings the recordings up to date.
+    pub(super) fn tick(&mut self, seconds: f64, build_ms: f64) {
         if let Some(source) = self.pending.take() {
             self.load(&source);
+        } else if let Some(mesh) = &mut self.mesh
+            && self.motion.advance(mesh, seconds, self.revisions + 1)
+        {
+            self.revisions += 1;
         }
         self.refresh(BuildBudget::Millis(build_ms));
     }
@@ -204,6 +218,12 @@ impl Lab3d {
                     None => self.framing = true,
                 }
                 self.message = (!mesh.warnings.is_empty()).then(|| mesh.warnings.join(" "));
+                self.motion.restart();
+                if motion::moves(&mesh) {
+                    // A mesh that moves every frame is refitted every frame, unless the
+                    // student switches to rebuilding.
+                    self.half.lane.update = UpdateMode::Refit;
+                }
                 self.mesh = Some(mesh);
             }
             Err(e) => {
@@ -299,6 +319,7 @@ impl Lab3d {
             }
             Action3d::SetDisplay(display) => self.display = display,
             Action3d::SetHeat(heat) => self.heat = heat,
+            Action3d::Animate(on) => self.motion.on = on,
         }
         Ok(Note::Keep)
     }

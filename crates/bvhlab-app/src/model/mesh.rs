@@ -31,7 +31,8 @@ pub struct Mesh3d {
     pub stats: MeshStats,
     /// What the loader noticed and let pass (skipped primitives, degenerate triangles).
     pub warnings: Vec<String>,
-    /// Changes whenever another mesh is loaded.
+    /// Changes whenever another mesh is loaded, or the mesh moves
+    /// ([`Mesh3d::replace`]).
     pub revision: u64,
 }
 
@@ -52,6 +53,14 @@ impl Mesh3d {
             warnings,
             revision,
         }
+    }
+
+    /// Puts `mesh` (the same mesh moved: [`super::motion`]) in place of the triangles, with
+    /// `revision`; the name, source and warnings stay.
+    pub fn replace(&mut self, mesh: Mesh, revision: u64) {
+        self.stats = mesh.summary();
+        self.mesh = mesh;
+        self.revision = revision;
     }
 
     /// The number of triangles.

@@ -20,7 +20,7 @@
 //!   any step; [`playback`]: the transport; [`outcome`]: the live answers beside brute
 //!   force's; [`structures`]: one dispatch over the core's structures.
 //! - [`scene`], [`presets`], [`volumes`], [`camera2d`]: the 2D half's data; [`mesh`],
-//!   [`orbit_camera`], [`heat`]: the 3D half's; [`tools`]: what a press does in each.
+//!   [`motion`], [`orbit_camera`], [`heat`]: the 3D half's; [`tools`]: what a press does in each.
 //! - [`predict`]: the student predicts each step before it is shown, and is scored.
 //! - [`lesson`]: the lesson open and its goals reached; [`goal`]: a goal read live;
 //!   [`setup`]: a starting state in a few words (the address's and each lesson step's).
@@ -43,6 +43,7 @@ pub mod lane;
 pub mod lane_name;
 pub mod lesson;
 pub mod mesh;
+pub mod motion;
 pub mod orbit_camera;
 pub mod outcome;
 pub mod playback;
@@ -137,10 +138,14 @@ impl Lab {
         self.dimension == Dimension::Three && self.three.busy()
     }
 
-    /// Whether the 2D half is shown and its shapes move (the drifting preset): the caller
-    /// keeps repainting.
+    /// Whether the half shown moves: the 2D drifting preset's shapes, or the 3D mesh that
+    /// moves. The caller keeps repainting; replies to the embedding page do not wait for it
+    /// to stop.
     pub fn animating(&self) -> bool {
-        self.dimension == Dimension::Two && self.two.animating()
+        match self.dimension {
+            Dimension::Two => self.two.animating(),
+            Dimension::Three => self.three.moving(),
+        }
     }
 
     /// Whether playback runs in the half shown.

@@ -2,7 +2,7 @@
 //! computed) and its legend.
 
 use super::Panel;
-use crate::lab3d::heat::Shown;
+use crate::lab3d::heat::{MOVING_GPU_EVERY, MOVING_PIXEL, Shown};
 use crate::model::Action3d;
 use crate::model::heat::{Device, Metric};
 use crate::render3d::heatmap::legend;
@@ -63,6 +63,19 @@ impl Panel for Heat {
                 legend(ui, max.max(1), map.metric());
             }
             Shown::Nothing => {}
+        }
+        if let Some(every) = map.moving_every() {
+            let how = if matches!(map.shown(), Shown::Gpu(_)) {
+                format!("traced on the GPU at most every {MOVING_GPU_EVERY} frames")
+            } else {
+                format!(
+                    "the CPU traces one frame's tree whole, one ray per {MOVING_PIXEL}×{MOVING_PIXEL} pixels"
+                )
+            };
+            ui.colored_label(
+                crate::paint::colors::PRUNED,
+                format!("The mesh moves: a new image every {every} frames ({how})."),
+            );
         }
     }
 }

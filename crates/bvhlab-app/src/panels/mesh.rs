@@ -72,6 +72,7 @@ fn mesh_section(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
     if lab.pending.is_some() {
         ui.label("Loading…");
     }
+    super::motion::motion_section(cx, ui);
 }
 
 /// Opens the browser's file dialog for a mesh; natively, says to drop the file.

@@ -4,7 +4,7 @@
 //! the lecture's order.
 //!
 //! - The controls (left): [`lesson`] first, then [`scene`], [`volumes`], [`structure`], [`queries`], [`save_share`]
-//!   in 2D; [`mesh`], [`structure`], [`ray_point`], [`heat`], [`save_share`] in 3D.
+//!   in 2D; [`mesh`] (with [`motion`] for a mesh that moves), [`structure`], [`ray_point`], [`heat`], [`save_share`] in 3D.
 //! - "Step through" (right): [`step_through`] (task, comparison, transport, export, and each
 //!   lane's recording at the step: [`recording`], with a build's split in [`split`]).
 //! - Below the view: the tree diagrams ([`tree`]); at the bottom, the status line
@@ -14,6 +14,7 @@ pub mod export;
 pub mod heat;
 pub mod lesson;
 pub mod mesh;
+pub mod motion;
 pub mod predict;
 pub mod queries;
 pub mod ray_point;

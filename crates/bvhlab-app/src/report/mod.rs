@@ -1,6 +1,7 @@
 //! What the lab reports about itself, as text for screen readers and as JSON for the page
 //! (the browser test reads it; a course page embedding the lab can too).
 
+pub mod motion;
 pub mod predict;
 pub mod update;
 
@@ -392,6 +393,8 @@ pub struct Report3d {
     pub message: Option<String>,
     /// The heat map, when shown: "gpu" or "cpu", its progress and its largest count.
     pub heat_map: Option<HeatReport>,
+    /// The mesh's motion, when it moves (the twisting torus).
+    pub motion: Option<motion::MotionReport>,
 }
 
 /// A first hit in 3D.
@@ -449,6 +452,7 @@ impl Report3d {
             brute_force_tests: rec.map(|r| r.brute_cost.prim_tests),
             message: three.message.clone(),
             heat_map: ui.view3d.heat.report(three.heat.on),
+            motion: motion::MotionReport::of(lab, ui),
         }
     }
 }
