@@ -5,6 +5,7 @@
 
 mod common;
 
+use bvhlab::RayCast;
 use bvhlab::glam::Vec3;
 use bvhlab::{BruteForce, Ray3, SpatialIndex, Triangle3};
 use bvhlab_app::LabApp;

@@ -2,6 +2,7 @@
 //! tree (its boxes grow, its SAH cost rises), "Rebuild now" brings the cost down, the answers
 //! stay exact, and the structures that partition space say why they rebuild instead.
 
+use bvhlab::RayCast;
 use bvhlab::glam::Vec2;
 use bvhlab::{BruteForce, Ray2, Segment2, SpatialIndex};
 use bvhlab_app::model::build_job::Structure;

@@ -151,7 +151,10 @@ pub(crate) fn check_coverage<T: PlaneTree>(
     let leaves = leaves_of_prims(tree);
     for (index, prim) in tree.prims().iter().enumerate() {
         let under = |node: u32| {
-            let end = facts[node as usize].end;
+            // A tree without nodes (a damaged saved file) stores nothing.
+            let Some(end) = facts.get(node as usize).map(|fact| fact.end) else {
+                return false;
+            };
             let at = leaves[index].partition_point(|&leaf| leaf < node);
             leaves[index].get(at).is_some_and(|&leaf| leaf < end)
         };
