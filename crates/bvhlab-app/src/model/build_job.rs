@@ -22,8 +22,8 @@ const MIN_TIMED_MS: f64 = 0.5;
 /// The most runs [`timed`] makes.
 const MAX_TIMED_RUNS: u32 = 100;
 
-/// Runs `work` once, and again while all the runs took less than [`MIN_TIMED_MS`] (at most
-/// [`MAX_TIMED_RUNS`] runs); returns the last run's result and the mean milliseconds per run.
+/// Runs `work` once, and again while all the runs took less than `MIN_TIMED_MS` (at most
+/// `MAX_TIMED_RUNS` runs); returns the last run's result and the mean milliseconds per run.
 /// The browser's clock counts in steps of 0.1 ms, too coarse to time one refit or build of a
 /// few hundred segments, which take microseconds; `work` must give the same result every run.
 pub fn timed<T>(mut work: impl FnMut() -> T) -> (T, f64) {

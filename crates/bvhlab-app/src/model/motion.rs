@@ -45,7 +45,7 @@ impl Motion {
         *self = Self::default();
     }
 
-    /// Moves `mesh` on by `seconds` (at most [`MAX_STEP_SECONDS`]) when it moves and the
+    /// Moves `mesh` on by `seconds` (at most `MAX_STEP_SECONDS`) when it moves and the
     /// motion is on, giving it `revision`. Whether it moved.
     pub fn advance(&mut self, mesh: &mut Mesh3d, seconds: f64, revision: u64) -> bool {
         if !(self.on && moves(mesh) && seconds.is_finite() && seconds > 0.0) {
