@@ -184,6 +184,23 @@ pub enum PlaybackAction {
     SetSpeed(f32),
 }
 
+impl Action2d {
+    /// Whether the action edits the scene's shapes (which also stops the drifting preset's
+    /// motion).
+    pub fn edits_scene(&self) -> bool {
+        matches!(
+            self,
+            Self::Clear
+                | Self::Undo
+                | Self::Redo
+                | Self::AddShape { .. }
+                | Self::AddToCloud { .. }
+                | Self::MoveSelection(_)
+                | Self::DeleteSelection
+        )
+    }
+}
+
 impl Action {
     /// Whether the action asks a new question: it changes what is recorded (the scene or
     /// mesh, the structures, the task, variant, k, radius, the ray or the point). Playback
@@ -191,19 +208,13 @@ impl Action {
     /// just loaded is not one: opening it was.
     pub fn asks_new_question(&self) -> bool {
         match self {
-            Self::Two(a) => matches!(
-                a,
-                Action2d::LoadPreset(_)
-                    | Action2d::Clear
-                    | Action2d::Undo
-                    | Action2d::Redo
-                    | Action2d::AddShape { .. }
-                    | Action2d::AddToCloud { .. }
-                    | Action2d::MoveSelection(_)
-                    | Action2d::DeleteSelection
-                    | Action2d::SetRay(_)
-                    | Action2d::SetPoint(_)
-            ),
+            Self::Two(a) => {
+                a.edits_scene()
+                    || matches!(
+                        a,
+                        Action2d::LoadPreset(_) | Action2d::SetRay(_) | Action2d::SetPoint(_)
+                    )
+            }
             Self::Three(a) => matches!(
                 a,
                 Action3d::SetTool(_)

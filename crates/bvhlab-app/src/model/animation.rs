@@ -9,7 +9,6 @@
 //! was.
 
 use super::Note;
-use super::action::Action2d;
 use super::half::Half;
 use super::lab2d::Lab2d;
 use super::lane::Lane;
@@ -40,20 +39,6 @@ impl Animation {
             time: 0.0,
         })
     }
-}
-
-/// Whether `action` edits the scene's shapes (which stops the motion).
-pub(super) fn edits_scene(action: &Action2d) -> bool {
-    matches!(
-        action,
-        Action2d::Clear
-            | Action2d::Undo
-            | Action2d::Redo
-            | Action2d::AddShape { .. }
-            | Action2d::AddToCloud { .. }
-            | Action2d::MoveSelection(_)
-            | Action2d::DeleteSelection
-    )
 }
 
 /// What loading `preset` does to the lanes: the drifting preset compares a refitted tree

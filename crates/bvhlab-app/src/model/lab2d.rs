@@ -8,7 +8,7 @@ use bvhlab::{Ray2, Segment2};
 
 use super::Note;
 use super::action::Action2d;
-use super::animation::{Animation, edits_scene, preset_lanes};
+use super::animation::{Animation, preset_lanes};
 use super::camera2d::Camera2d;
 use super::half::Half;
 use super::history::{Edit, History, PresetSetup, SceneState};
@@ -241,7 +241,7 @@ impl Lab2d {
             // A drag's moves are one edit, until anything else happens.
             self.history.close_move();
         }
-        if edits_scene(&action) {
+        if action.edits_scene() {
             self.stop_animation();
         }
         match action {

@@ -19,6 +19,12 @@ pub fn torus(rings: u32, sides: u32, tube: f32) -> Mesh {
             positions.push(Vec3::new(reach * cos_u, tube * sin_v, reach * sin_u));
         }
     }
+    super::indexed(positions, ring_triangles(rings, sides))
+}
+
+/// The triangles of a torus whose vertices are laid out ring by ring (`rings` rings of
+/// `sides` vertices each), closed around both circles: two per quad.
+pub(super) fn ring_triangles(rings: u32, sides: u32) -> Vec<[u32; 3]> {
     let at = |i: u32, j: u32| (i % rings) * sides + j % sides;
     let mut indices = Vec::with_capacity((2 * rings * sides) as usize);
     for i in 0..rings {
@@ -31,5 +37,5 @@ pub fn torus(rings: u32, sides: u32, tube: f32) -> Mesh {
             indices.push([b, d, c]);
         }
     }
-    super::indexed(positions, indices)
+    indices
 }

@@ -49,17 +49,6 @@ pub fn twisting_torus(rings: u32, sides: u32, seconds: f64) -> Mesh {
             positions.push(Vec3::new(reach * cos_u, up, reach * sin_u));
         }
     }
-    let at = |i: u32, j: u32| (i % rings) * sides + j % sides;
-    let mut indices = Vec::with_capacity((2 * rings * sides) as usize);
-    for i in 0..rings {
-        for j in 0..sides {
-            // As the torus's: around the tube, then around the axis, counter-clockwise from
-            // outside (turning the section keeps its orientation).
-            let (a, b) = (at(i, j), at(i, j + 1));
-            let (c, d) = (at(i + 1, j), at(i + 1, j + 1));
-            indices.push([a, b, c]);
-            indices.push([b, d, c]);
-        }
-    }
-    super::indexed(positions, indices)
+    // The torus's triangles: turning the section keeps their orientation.
+    super::indexed(positions, super::torus::ring_triangles(rings, sides))
 }
