@@ -179,11 +179,21 @@ pub enum RayKind {
     Diffuse,
     /// Random origins in the bounding box, random directions.
     Random,
+    /// Camera rays from far away ([`OVERVIEW_DISTANCE`] bounding radii): the mesh is small in
+    /// the frame and most rays miss it, so the walks are judged on rays that only touch the
+    /// top of the tree too (the workload on which the first comparison's lead shrank).
+    Overview,
 }
 
 impl RayKind {
     /// Every kind, in the order of the tables.
-    pub const ALL: [Self; 4] = [Self::Primary, Self::Shadow, Self::Diffuse, Self::Random];
+    pub const ALL: [Self; 5] = [
+        Self::Primary,
+        Self::Shadow,
+        Self::Diffuse,
+        Self::Random,
+        Self::Overview,
+    ];
 
     /// The kind's short name.
     pub fn name(self) -> &'static str {
@@ -192,6 +202,7 @@ impl RayKind {
             Self::Shadow => "shadow",
             Self::Diffuse => "diffuse",
             Self::Random => "random",
+            Self::Overview => "overview",
         }
     }
 }
@@ -232,6 +243,14 @@ impl WorkloadSize {
 
 /// Where the cameras look from: directions from the mesh's centre, scaled to frame it.
 pub const VIEWPOINTS: [[f32; 3]; 3] = [[1.0, -0.7, 0.5], [-0.6, -1.0, 0.3], [0.2, 0.9, -0.6]];
+
+/// Where the overview camera looks from (a direction from the mesh's centre).
+pub const OVERVIEW_VIEWPOINT: [f32; 3] = [-0.8, 0.5, 0.7];
+
+/// How far the overview camera stands, in bounding radii: with the cameras' half-angle of
+/// about 24°, the bounding sphere fills about a seventh of the frame's height squared, and the
+/// mesh less.
+pub const OVERVIEW_DISTANCE: f32 = 6.0;
 
 /// The rays and points of one scene.
 #[derive(Clone, Debug, PartialEq)]
@@ -300,6 +319,10 @@ impl Workload {
                 (RayKind::Shadow, shadow),
                 (RayKind::Diffuse, diffuse),
                 (RayKind::Random, random),
+                (
+                    RayKind::Overview,
+                    overview_rays(center, radius, size.width, size.height),
+                ),
             ],
             points,
         }
@@ -325,6 +348,21 @@ fn primary_rays(center: Vec3, radius: f32, size: &WorkloadSize) -> Vec<BenchRay>
             let eye = center + Vec3::from_array(*d).normalize() * (2.0 * radius);
             camera_rays(eye, center, size.width, size.height)
         })
+        .map(|ray| BenchRay {
+            origin: ray.origin(),
+            dir: ray.dir().normalize(),
+            t_max: f32::INFINITY,
+        })
+        .collect()
+}
+
+/// The overview camera's rays: one camera [`OVERVIEW_DISTANCE`] radii away, the mesh small in
+/// its frame.
+fn overview_rays(center: Vec3, radius: f32, width: usize, height: usize) -> Vec<BenchRay> {
+    let eye =
+        center + Vec3::from_array(OVERVIEW_VIEWPOINT).normalize() * (OVERVIEW_DISTANCE * radius);
+    camera_rays(eye, center, width, height)
+        .into_iter()
         .map(|ray| BenchRay {
             origin: ray.origin(),
             dir: ray.dir().normalize(),
@@ -422,6 +460,42 @@ mod tests {
             let near = brute.closest_point(ray.origin).map(|n| n.distance);
             assert!(near.is_some_and(|d| d < 1e-2), "{near:?}");
         }
+    }
+
+    #[test]
+    fn the_overview_camera_sees_the_mesh_small_so_most_of_its_rays_miss() {
+        let tris = shared_mesh_or_torus();
+        let size = WorkloadSize {
+            width: 64,
+            height: 48,
+            viewpoints: 1,
+            random_rays: 10,
+            points: 10,
+        };
+        let work = Workload::generate(&tris, &size);
+        let overview = work.rays_of(RayKind::Overview);
+        assert_eq!(overview.len(), 64 * 48);
+        let tree = AabbTree3::build(&tris);
+        let hits = overview
+            .iter()
+            .filter(|r| {
+                let ray = Ray3::new(r.origin, r.dir).expect("finite unit rays");
+                tree.ray_first_hit(&ray, r.t_max).is_some()
+            })
+            .count();
+        // Some rays hit (the camera looks at the mesh), most miss.
+        assert!(
+            hits > 20 && hits * 4 < overview.len(),
+            "{hits} of {}",
+            overview.len()
+        );
+    }
+
+    /// The bunny when the shared meshes are here, else a torus (both closed-ish shapes).
+    fn shared_mesh_or_torus() -> Vec<Triangle3> {
+        SceneId::Bunny
+            .triangles()
+            .unwrap_or_else(|_| torus_with(5_000))
     }
 
     #[test]

@@ -15,6 +15,7 @@ pub struct Bvhlab;
 impl Library for Bvhlab {
     const NAME: &'static str = "bvhlab AABB tree (binned SAH)";
     const HAS_CLOSEST: bool = true;
+    const HAS_OCCLUSION: bool = true;
     type Input = Vec<Triangle3>;
     type Tree<'a> = AabbTree3;
     type Ray = (Ray3, f32);
@@ -35,6 +36,10 @@ impl Library for Bvhlab {
 
     fn first_hit(tree: &AabbTree3, (ray, t_max): &Self::Ray) -> Option<f32> {
         tree.ray_first_hit(ray, *t_max).map(|hit| hit.t)
+    }
+
+    fn occluded(tree: &AabbTree3, (ray, t_max): &Self::Ray) -> bool {
+        tree.ray_any_hit(ray, *t_max).is_some()
     }
 
     fn first_hit_cost(tree: &AabbTree3, (ray, t_max): &Self::Ray) -> RayCost {

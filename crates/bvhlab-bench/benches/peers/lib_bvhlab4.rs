@@ -24,6 +24,7 @@ pub struct BvhlabWide;
 impl Library for BvhlabWide {
     const NAME: &'static str = "bvhlab 4-wide AABB tree (binned SAH, collapsed)";
     const HAS_CLOSEST: bool = true;
+    const HAS_OCCLUSION: bool = true;
     type Input = Vec<Triangle3>;
     type Tree<'a> = Wide<'a>;
     type Ray = (Ray3, f32);
@@ -47,6 +48,10 @@ impl Library for BvhlabWide {
 
     fn first_hit(tree: &Wide<'_>, (ray, t_max): &Self::Ray) -> Option<f32> {
         tree.tree.ray_first_hit(ray, *t_max).map(|hit| hit.t)
+    }
+
+    fn occluded(tree: &Wide<'_>, (ray, t_max): &Self::Ray) -> bool {
+        tree.tree.ray_any_hit(ray, *t_max).is_some()
     }
 
     fn first_hit_cost(_tree: &Wide<'_>, _ray: &Self::Ray) -> RayCost {

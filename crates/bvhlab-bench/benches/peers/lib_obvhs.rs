@@ -41,6 +41,7 @@ impl Obvhs {
 impl Library for Obvhs {
     const NAME: &'static str = "obvhs 0.4 BVH2 (medium build)";
     const HAS_CLOSEST: bool = false;
+    const HAS_OCCLUSION: bool = true;
     type Input = Vec<Triangle>;
     type Tree<'a> = Obvhs2;
     type Ray = Ray;
@@ -81,6 +82,12 @@ impl Library for Obvhs {
             .bvh
             .ray_traverse(*ray, &mut hit, |r, id| tree.tris[id].intersect(r));
         found.then_some(hit.t)
+    }
+
+    fn occluded(tree: &Obvhs2, ray: &Ray) -> bool {
+        !tree
+            .bvh
+            .ray_traverse_miss(*ray, |r, id| tree.tris[id].intersect(r))
     }
 
     fn first_hit_cost(tree: &Obvhs2, ray: &Ray) -> RayCost {

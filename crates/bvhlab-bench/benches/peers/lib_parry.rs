@@ -25,6 +25,7 @@ fn v(p: Vec3) -> Vector {
 impl Library for Parry {
     const NAME: &'static str = "parry3d 0.31 TriMesh";
     const HAS_CLOSEST: bool = true;
+    const HAS_OCCLUSION: bool = true;
     type Input = (Vec<Vector>, Vec<[u32; 3]>);
     type Tree<'a> = TriMesh;
     type Ray = (Ray, f32);
@@ -58,6 +59,10 @@ impl Library for Parry {
 
     fn first_hit(tree: &TriMesh, (ray, t_max): &Self::Ray) -> Option<f32> {
         tree.cast_local_ray(ray, *t_max, false)
+    }
+
+    fn occluded(tree: &TriMesh, (ray, t_max): &Self::Ray) -> bool {
+        tree.intersects_local_ray(ray, *t_max)
     }
 
     fn closest_distance(tree: &TriMesh, point: Vec3) -> Option<f32> {

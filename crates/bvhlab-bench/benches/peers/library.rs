@@ -33,6 +33,9 @@ pub trait Library {
     const NAME: &'static str;
     /// Whether [`closest_distance`](Self::closest_distance) is implemented.
     const HAS_CLOSEST: bool;
+    /// Whether [`occluded`](Self::occluded) is the library's own occlusion (any-hit) call;
+    /// when not, the shadow rays are only timed as first hits.
+    const HAS_OCCLUSION: bool = false;
     /// The triangles in the library's own format (converted before timing).
     type Input;
     /// The built structure.
@@ -53,6 +56,11 @@ pub trait Library {
     /// What the first-hit query of `ray` cost (not timed; may run an instrumented variant).
     fn first_hit_cost(_tree: &Self::Tree<'_>, _ray: &Self::Ray) -> RayCost {
         RayCost::default()
+    }
+    /// Whether anything blocks the ray within its `t_max` (timed; shadow rays). Called only
+    /// when [`HAS_OCCLUSION`](Self::HAS_OCCLUSION) is set.
+    fn occluded(_tree: &Self::Tree<'_>, _ray: &Self::Ray) -> bool {
+        unreachable!("occluded is only called when HAS_OCCLUSION is set")
     }
     /// The distance from `point` to the nearest triangle (timed; `None` when not supported).
     fn closest_distance(_tree: &Self::Tree<'_>, _point: Vec3) -> Option<f32> {

@@ -36,6 +36,20 @@ pub struct KindResult {
     pub missed: usize,
     /// A few of them: (ray index, bvhlab's t, this library's t).
     pub examples: Vec<(usize, Option<f32>, Option<f32>)>,
+    /// The same rays asked as occlusion (any hit), where the library has the call and the
+    /// kind is [`RayKind::Shadow`].
+    pub occlusion: Option<Occlusion>,
+}
+
+/// The shadow rays asked as occlusion queries.
+#[derive(Clone, Copy, Debug)]
+pub struct Occlusion {
+    /// Millions of rays per second (median).
+    pub mrays_per_s: f64,
+    /// Rays blocked, by this library.
+    pub blocked: usize,
+    /// Rays whose verdict differs from bvhlab's first hit (a hit within `t_max` or none).
+    pub disagreements: usize,
 }
 
 /// Results of one library on one scene.
@@ -99,6 +113,32 @@ pub fn agree(a: Option<f32>, b: Option<f32>, floor: f64) -> bool {
     }
 }
 
+/// Times `rays` as occlusion queries and checks each verdict against `expected` first hits.
+fn occlusion<L: Library>(
+    tree: &L::Tree<'_>,
+    rays: &[L::Ray],
+    expected: &[Option<f32>],
+    repeats: Repeats,
+) -> Occlusion {
+    let secs = median_secs(repeats.count, || {
+        let mut blocked = 0usize;
+        for ray in rays {
+            blocked += usize::from(L::occluded(tree, ray));
+        }
+        black_box(blocked);
+    });
+    let verdicts: Vec<bool> = rays.iter().map(|r| L::occluded(tree, r)).collect();
+    Occlusion {
+        mrays_per_s: rays.len() as f64 / secs / 1e6,
+        blocked: verdicts.iter().filter(|&&b| b).count(),
+        disagreements: verdicts
+            .iter()
+            .zip(expected)
+            .filter(|(b, want)| **b != want.is_some())
+            .count(),
+    }
+}
+
 /// Measures library `L` on `tris` with the workload `work`; compares with `reference` when
 /// given, and returns its own answers (to serve as the reference when `L` is bvhlab).
 pub fn measure<L: Library>(
@@ -150,6 +190,7 @@ pub fn measure<L: Library>(
             disagreements: 0,
             missed: 0,
             examples: Vec::new(),
+            occlusion: None,
         };
         if let Some(expected) = reference.and_then(|r| r.hits.get(k)) {
             for (i, (&want, &have)) in expected.iter().zip(&got).enumerate() {
@@ -161,6 +202,10 @@ pub fn measure<L: Library>(
                     }
                 }
             }
+        }
+        if L::HAS_OCCLUSION && *kind == RayKind::Shadow {
+            let expected = reference.and_then(|r| r.hits.get(k)).unwrap_or(&got);
+            result.occlusion = Some(occlusion::<L>(&tree, &rays, expected, repeats));
         }
         answers.hits.push(got);
         kinds.push(result);

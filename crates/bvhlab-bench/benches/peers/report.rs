@@ -53,15 +53,17 @@ fn opt(x: Option<f64>, digits: usize) -> String {
 /// The header of the running text table.
 pub fn header_text() -> String {
     format!(
-        "{:<34} {:>9} {:>7} {:>7} {:>8} {:>8} {:>8} {:>8} {:>10} {:>10} {:>9}",
+        "{:<34} {:>9} {:>7} {:>7} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>10} {:>10} {:>9}",
         "library",
         "build ms",
         "SAH",
         "B/tri",
         "primary",
         "shadow",
+        "occluded",
         "diffuse",
         "random",
+        "overview",
         "nodes/ray",
         "prims/ray",
         "cp kq/s"
@@ -73,21 +75,31 @@ pub fn header_text() -> String {
 pub fn row_text(r: &LibResult, triangles: usize) -> String {
     let mrays = |k: RayKind| r.kinds.iter().find(|x| x.kind == k).map(|x| x.mrays_per_s);
     let diffuse = r.kinds.iter().find(|x| x.kind == RayKind::Diffuse);
+    let occluded = r
+        .kinds
+        .iter()
+        .find_map(|x| x.occlusion.map(|o| o.mrays_per_s));
     let mut line = format!(
-        "{:<34} {:>9.1} {:>7} {:>7} {:>8} {:>8} {:>8} {:>8} {:>10} {:>10} {:>9}",
+        "{:<34} {:>9.1} {:>7} {:>7} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>10} {:>10} {:>9}",
         r.library,
         r.build_ms,
         opt(r.facts.sah, 1),
         opt(r.facts.bytes.map(|b| b as f64 / triangles as f64), 0),
         opt(mrays(RayKind::Primary), 2),
         opt(mrays(RayKind::Shadow), 2),
+        opt(occluded, 2),
         opt(mrays(RayKind::Diffuse), 2),
         opt(mrays(RayKind::Random), 2),
+        opt(mrays(RayKind::Overview), 2),
         opt(diffuse.and_then(|d| d.nodes_per_ray), 1),
         opt(diffuse.and_then(|d| d.prims_per_ray), 1),
         opt(r.closest_per_s.map(|q| q / 1e3), 0),
     );
-    let wrong: usize = r.kinds.iter().map(|k| k.disagreements).sum();
+    let wrong: usize = r
+        .kinds
+        .iter()
+        .map(|k| k.disagreements + k.occlusion.map_or(0, |o| o.disagreements))
+        .sum();
     if wrong > 0 || r.closest_disagreements.is_some_and(|n| n > 0) {
         let _ = write!(
             line,
@@ -146,6 +158,9 @@ fn lib_json(r: &LibResult, triangles: usize) -> Value {
                 "mrays_per_s": k.mrays_per_s, "nodes_per_ray": k.nodes_per_ray,
                 "prims_per_ray": k.prims_per_ray, "disagreements": k.disagreements,
                 "missed": k.missed,
+                "occluded_mrays_per_s": k.occlusion.map(|o| o.mrays_per_s),
+                "occluded_rays": k.occlusion.map(|o| o.blocked),
+                "occlusion_disagreements": k.occlusion.map(|o| o.disagreements),
                 "examples": k.examples.iter().map(|(i, a, b)| json!([i, a, b])).collect::<Vec<_>>(),
             })
         })

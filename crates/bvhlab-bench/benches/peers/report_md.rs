@@ -19,6 +19,26 @@ fn mrays(lib: &Value, name: &str) -> Option<f64> {
     kind(lib, name).and_then(|k| k["mrays_per_s"].as_f64())
 }
 
+/// The rate columns of the native tables: each ray kind's first hits, and the shadow rays
+/// asked again as occlusion (any hit) where the library has that call.
+const RATE_COLUMNS: [&str; 6] = [
+    "primary",
+    "shadow",
+    "shadow as occlusion",
+    "diffuse",
+    "random",
+    "overview",
+];
+
+/// Mrays/s of one rate column.
+fn rate(lib: &Value, column: &str) -> Option<f64> {
+    if column == "shadow as occlusion" {
+        kind(lib, "shadow").and_then(|k| k["occluded_mrays_per_s"].as_f64())
+    } else {
+        mrays(lib, column)
+    }
+}
+
 fn ratio(a: Option<f64>, b: Option<f64>) -> String {
     match (a, b) {
         (Some(a), Some(b)) if b > 0.0 => format!("{:.2}x", a / b),
@@ -29,8 +49,9 @@ fn ratio(a: Option<f64>, b: Option<f64>) -> String {
 fn native_table(md: &mut String, scene: &Value) {
     let _ = writeln!(
         md,
-        "| library | build ms | ms/Mtri | SAH | nodes | B/tri | primary | shadow | diffuse | random | nodes/ray (prim., diff.) | tris/ray (prim., diff.) | closest kq/s | disagreements (rays, closest) |\n{}",
-        "| --- ".repeat(14) + "|"
+        "| library | build ms | ms/Mtri | SAH | nodes | B/tri | {} | nodes/ray (prim., diff.) | tris/ray (prim., diff.) | closest kq/s | disagreements (rays, closest) |\n{}",
+        RATE_COLUMNS.join(" | "),
+        "| --- ".repeat(10 + RATE_COLUMNS.len()) + "|"
     );
     for lib in scene["libraries"].as_array().into_iter().flatten() {
         let per = |field: &str| {
@@ -42,7 +63,10 @@ fn native_table(md: &mut String, scene: &Value) {
             .as_array()
             .into_iter()
             .flatten()
-            .filter_map(|k| k["disagreements"].as_u64())
+            .map(|k| {
+                k["disagreements"].as_u64().unwrap_or(0)
+                    + k["occlusion_disagreements"].as_u64().unwrap_or(0)
+            })
             .sum();
         let _ = writeln!(
             md,
@@ -53,8 +77,8 @@ fn native_table(md: &mut String, scene: &Value) {
             num(&lib["sah_cost"], 1),
             num(&lib["nodes"], 0),
             num(&lib["bytes_per_triangle"], 0),
-            KINDS
-                .map(|k| mrays(lib, k).map_or_else(|| "n/a".into(), |x| format!("{x:.2}")))
+            RATE_COLUMNS
+                .map(|c| rate(lib, c).map_or_else(|| "n/a".into(), |x| format!("{x:.2}")))
                 .join(" | "),
             per("nodes_per_ray"),
             per("prims_per_ray"),
@@ -77,16 +101,17 @@ fn ratio_table(md: &mut String, scene: &Value) {
     };
     let _ = writeln!(
         md,
-        "\nbvhlab ÷ peer (above 1 means bvhlab is faster, or its tree cheaper for SAH):\n\n| peer | primary | shadow | diffuse | random | closest | build speed | SAH cost ratio (peer ÷ ours) |\n{}",
-        "| --- ".repeat(8) + "|"
+        "\nbvhlab ÷ peer (above 1 means bvhlab is faster, or its tree cheaper for SAH):\n\n| peer | {} | closest | build speed | SAH cost ratio (peer ÷ ours) |\n{}",
+        RATE_COLUMNS.join(" | "),
+        "| --- ".repeat(4 + RATE_COLUMNS.len()) + "|"
     );
     for peer in peers {
         let _ = writeln!(
             md,
             "| {} | {} | {} | {} | {} |",
             peer["library"].as_str().unwrap_or_default(),
-            KINDS
-                .map(|k| ratio(mrays(ours, k), mrays(peer, k)))
+            RATE_COLUMNS
+                .map(|c| ratio(rate(ours, c), rate(peer, c)))
                 .join(" | "),
             ratio(
                 ours["closest_per_s"].as_f64(),
@@ -96,6 +121,11 @@ fn ratio_table(md: &mut String, scene: &Value) {
             ratio(peer["sah_cost"].as_f64(), ours["sah_cost"].as_f64()),
         );
     }
+    let _ = writeln!(
+        md,
+        "\nbvhlab's occlusion walk ÷ its first-hit walk, on the same shadow rays: {}.",
+        ratio(rate(ours, "shadow as occlusion"), rate(ours, "shadow"))
+    );
 }
 
 fn wasm_section(md: &mut String, all: &Value) {
@@ -193,6 +223,17 @@ fn disagreements(md: &mut String, all: &Value) {
                         k["examples"]
                     );
                 }
+                let occlusion = k["occlusion_disagreements"].as_u64().unwrap_or(0);
+                if occlusion > 0 {
+                    any = true;
+                    let _ = writeln!(
+                        md,
+                        "- {} on {}, {} rays asked as occlusion: {occlusion} verdicts differ from bvhlab's first hit",
+                        lib["library"].as_str().unwrap_or_default(),
+                        scene["scene"].as_str().unwrap_or_default(),
+                        k["kind"].as_str().unwrap_or_default(),
+                    );
+                }
             }
             if lib["closest_disagreements"].as_u64().is_some_and(|n| n > 0) {
                 any = true;
@@ -232,8 +273,15 @@ pub fn markdown(all: &Value) -> String {
     let w = &all["workload"];
     let _ = writeln!(
         md,
-        "Workload (`crates/bvhlab-bench/src/workload.rs`): primary rays of a {}x{} pinhole camera from {} viewpoints (coherent); shadow rays from the primary hits to one point light; cosine-weighted diffuse bounces from the primary hits (incoherent); {} random rays in the bounding box (the issue's \"incoherent\"); {} closest-point queries at random points in the box grown 1.5x. Mrays/s per kind; nodes and triangles tested per ray where the library reports them (tinybvh: its traversal steps). SAH cost: `C_trav = C_tri = 1`, surface areas relative to the root, computed here from each library's nodes (bvh, obvhs, parry3d and tinybvh's binary BVH expose them; BVH8_CPU does not). B/tri: the bytes of nodes, indices and the library's copy of the triangles, per triangle.\n\nLibraries: bvhlab's `Bvh4` (the binned-SAH `AabbTree3` collapsed 4-wide, `ray_first_hit`, `closest_point`; build time includes the collapse; \"ours\" in the ratio tables) and the binary `AabbTree3` itself (`SpatialIndex::ray_first_hit`, `closest_point`); obvhs 0.4 `Bvh2` (PLOC, `medium_build`); parry3d 0.31 `TriMesh` (`cast_local_ray`, `project_local_point`); bvh 0.13 (SAH, `nearest_traverse_iterator` with a two-sided Möller-Trumbore, `nearest_to`); tinybvh through tinybvh-rs 0.1.0-beta.3 (`BVH::new`, C++ always built with `-march=native`; `BVH8_CPU` only when the Rust side has AVX2, i.e. with `-C target-cpu=native`).\n",
-        w["camera"][0], w["camera"][1], w["viewpoints"], w["random_rays"], w["points"],
+        "Workload (`crates/bvhlab-bench/src/workload.rs`): primary rays of a {}x{} pinhole camera from {} viewpoints (coherent); shadow rays from the primary hits to one point light; cosine-weighted diffuse bounces from the primary hits (incoherent); {} random rays in the bounding box (the issue's \"incoherent\"); overview: one more {}x{} camera {} bounding radii away, so that the mesh is small in the frame and most rays miss it; {} closest-point queries at random points in the box grown 1.5x. Mrays/s per kind; \"shadow as occlusion\": the shadow rays asked with the library's own occlusion call where it has one (bvhlab `ray_any_hit`, obvhs `ray_traverse_miss`, parry3d `intersects_local_ray`, Embree `rtcOccluded1`; tinybvh-rs 0.1.0-beta.3 does not bind tinybvh's `IsOccluded`, bvh 0.13 has no such call). Nodes and triangles tested per ray where the library reports them (tinybvh: its traversal steps). SAH cost: `C_trav = C_tri = 1`, surface areas relative to the root, computed here from each library's nodes (bvh, obvhs, parry3d and tinybvh's binary BVH expose them; BVH8_CPU does not). B/tri: the bytes of nodes, indices and the library's copy of the triangles, per triangle.\n\nLibraries: bvhlab's `Bvh4` (the binned-SAH `AabbTree3` collapsed 4-wide, `ray_first_hit`, `closest_point`; build time includes the collapse; \"ours\" in the ratio tables) and the binary `AabbTree3` itself (`SpatialIndex::ray_first_hit`, `closest_point`); obvhs 0.4 `Bvh2` (PLOC, `medium_build`); parry3d 0.31 `TriMesh` (`cast_local_ray`, `project_local_point`); bvh 0.13 (SAH, `nearest_traverse_iterator` with a two-sided Möller-Trumbore, `nearest_to`); tinybvh through tinybvh-rs 0.1.0-beta.3 (`BVH::new`, C++ always built with `-march=native`; `BVH8_CPU` only when the Rust side has AVX2, i.e. with `-C target-cpu=native`).\n",
+        w["camera"][0],
+        w["camera"][1],
+        w["viewpoints"],
+        w["random_rays"],
+        w["camera"][0],
+        w["camera"][1],
+        bvhlab_bench::workload::OVERVIEW_DISTANCE,
+        w["points"],
     );
     for scene in all["native"].as_array().into_iter().flatten() {
         let _ = writeln!(
