@@ -31,6 +31,8 @@
 //! # Ok::<(), bvhlab::GeometryError>(())
 //! ```
 
+mod batch;
+
 use crate::error::{GeometryError, check_finite};
 use crate::{Hit, Nearest, Primitive, Ray, Vector};
 
@@ -67,7 +69,7 @@ pub trait RayCast<V: Vector> {
     where
         Self: Sync,
     {
-        batch(rays, |ray| self.ray_first_hit(ray, t_max))
+        batch::in_order(rays, |ray| self.ray_first_hit(ray, t_max))
     }
 
     /// [`ray_any_hit`](Self::ray_any_hit) of each ray, in order (shadow rays); parallel as
@@ -76,7 +78,7 @@ pub trait RayCast<V: Vector> {
     where
         Self: Sync,
     {
-        batch(rays, |ray| self.ray_any_hit(ray, t_max))
+        batch::in_order(rays, |ray| self.ray_any_hit(ray, t_max))
     }
 }
 
@@ -100,12 +102,14 @@ pub trait PointQuery<V: Vector> {
     }
 
     /// [`closest_point`](Self::closest_point) of each point, in order: the same answers as
-    /// one call per point; with the `parallel` feature, split across threads.
+    /// one call per point. A large batch is answered in Morton order of the points, so that
+    /// neighbours find the tree's nodes in the cache, and the answers are put back in order;
+    /// with the `parallel` feature, split across threads.
     fn closest_points(&self, points: &[V]) -> Vec<Option<Nearest<V>>>
     where
         Self: Sync,
     {
-        batch(points, |&point| self.closest_point(point))
+        batch::by_location(points, |&point| self.closest_point(point))
     }
 
     /// [`closest_point`](Self::closest_point), refusing a non-finite query point.
@@ -124,20 +128,6 @@ pub trait PointQuery<V: Vector> {
     #[inline]
     fn checked_distance(&self, point: V) -> Result<f32, GeometryError> {
         check_finite(|| "query point".into(), point).map(|p| self.distance(p))
-    }
-}
-
-/// One answer per query, in order: on every core with the `parallel` feature. Queries are
-/// independent and read-only, so splitting them cannot change an answer.
-fn batch<Q: Sync, A: Send>(queries: &[Q], answer: impl Fn(&Q) -> A + Sync + Send) -> Vec<A> {
-    #[cfg(feature = "parallel")]
-    {
-        use rayon::prelude::*;
-        queries.par_iter().map(answer).collect()
-    }
-    #[cfg(not(feature = "parallel"))]
-    {
-        queries.iter().map(answer).collect()
     }
 }
 
