@@ -1,11 +1,14 @@
 #!/usr/bin/env bash
 # The side-by-side comparison of issue 7, in one command (from anywhere in the repository):
 #
-#   bash crates/bvhlab-bench/compare.sh            # everything: about 35 minutes built
+#   bash crates/bvhlab-bench/compare.sh            # everything: about 50 minutes built
 #   bash crates/bvhlab-bench/compare.sh --quick    # a smoke run: the bunny, small workload
-#   bash crates/bvhlab-bench/compare.sh --native   # also (about 25 minutes more) a native run with
-#                                                  # -C target-cpu=native (adds tinybvh's
-#                                                  # BVH8_CPU), into bench/native/
+#   bash crates/bvhlab-bench/compare.sh --no-native  # without the native run below
+#
+# Everything is: the WebAssembly comparison; the native one (default flags, five scenes); the
+# same built with -C target-cpu=native (adds tinybvh's BVH8_CPU) on the three real meshes, into
+# bench/native/ (BVHLAB_BENCH_SCENES overrides the scenes of both native runs); and bvhlab's
+# batch queries on both cores (`--parallel`, unpinned), added to bench/RESULTS.md.
 #
 # 1. builds bvhlab for wasm32-unknown-unknown with +simd128 (crates/bvhlab-bench-wasm) and its
 #    bindings (wasm-bindgen --target nodejs), installs three and three-mesh-bvh (pinned in
@@ -20,12 +23,13 @@ cd "$(dirname "$0")/../.."
 export PATH="${CARGO_HOME:-$HOME/.cargo}/bin:$PATH"
 
 quick=""
-native=""
+native=1
 for arg in "$@"; do
   case "$arg" in
     --quick) quick="--quick" ;;
-    --native) native=1 ;;
-    *) echo "compare.sh: unknown argument $arg (use --quick, --native)" >&2; exit 2 ;;
+    --native) native=1 ;;  # the default now; kept so that older command lines still work
+    --no-native) native="" ;;
+    *) echo "compare.sh: unknown argument $arg (use --quick, --no-native)" >&2; exit 2 ;;
   esac
 done
 
@@ -37,7 +41,7 @@ if command -v taskset >/dev/null; then pin=(taskset -c "$cpu"); fi
 # tinybvh builds big meshes on a thread pool unless told not to (cc passes CXXFLAGS on).
 export CXXFLAGS="${CXXFLAGS:-} -DNO_THREADED_BUILDS"
 mkdir -p bench
-rm -f bench/wasm.json
+rm -f bench/wasm.json bench/parallel.json
 
 # --- 1. WebAssembly ----------------------------------------------------------------------
 # The wasm32 target and the wasm-bindgen CLI of the version in Cargo.lock (shared with the
@@ -62,11 +66,17 @@ fi
 # --- 2. Native ---------------------------------------------------------------------------
 cargo bench -p bvhlab-bench --bench peers --no-run
 "${pin[@]}" cargo bench -p bvhlab-bench --bench peers -- $quick
+# Both cores: not pinned.
+cargo bench -p bvhlab-bench --bench peers -- $quick --parallel
 
 if [ -n "$native" ]; then
-  # A second build of everything with the host's instruction set, in its own target folder.
+  native_scenes="${BVHLAB_BENCH_SCENES:-bunny,dragon,ogre}"
+  if [ -n "$quick" ]; then native_scenes="${BVHLAB_BENCH_SCENES:-bunny}"; fi
+  # A second build of everything with the host's instruction set, in its own target folder,
+  # on the real meshes.
   RUSTFLAGS="-C target-cpu=native" CARGO_TARGET_DIR="$target/native" \
     cargo bench -p bvhlab-bench --bench peers --no-run
   RUSTFLAGS="-C target-cpu=native" CARGO_TARGET_DIR="$target/native" \
+    BVHLAB_BENCH_SCENES="$native_scenes" \
     BVHLAB_BENCH_OUT="$PWD/bench/native" "${pin[@]}" cargo bench -p bvhlab-bench --bench peers -- $quick
 fi

@@ -7,6 +7,9 @@
 //! WebAssembly), or the native half alone with
 //! `cargo bench -p bvhlab-bench --bench peers [-- --quick]`.
 //!
+//! `-- --parallel` measures instead bvhlab's batch queries and build in a one-thread pool and
+//! on every core (unpinned), into `parallel.json`, and renders `RESULTS.md` again with them.
+//!
 //! Environment: `BVHLAB_BENCH_QUICK=1` (or `--quick`): a smoke run (small camera, few rays
 //! and points, 2 repeats, the bunny only); `BVHLAB_BENCH_SCENES=bunny,ogre` picks scenes;
 //! `BVHLAB_BENCH_OUT=DIR` writes elsewhere than `bench/`.
@@ -24,6 +27,7 @@ mod lib_parry;
 mod lib_tinybvh;
 mod library;
 mod measure;
+mod parallel;
 mod report;
 mod report_md;
 
@@ -47,6 +51,43 @@ fn run<L: Library>(
     println!("{}", report::row_text(&result, scene.tris.len()));
     rows.push(result);
     answers
+}
+
+/// The `--parallel` run: bvhlab's batch queries and build in one thread and on every core.
+fn run_parallel(scenes: &[SceneId], size: &WorkloadSize, repeats: Repeats, out: &std::path::Path) {
+    let mut all = Vec::new();
+    for &id in scenes {
+        let Ok(tris) = id.triangles() else {
+            println!("skipping {}", id.name());
+            continue;
+        };
+        let work = Workload::generate(&tris, size);
+        println!(
+            "\n{} ({} triangles): per second, one thread / every core",
+            id.name(),
+            tris.len()
+        );
+        let rows = parallel::measure(&tris, &work, repeats);
+        for r in &rows {
+            println!(
+                "{:<40} {:>12.0} {:>12.0} {:>6.2}x{}",
+                r.what,
+                r.one_thread,
+                r.all_cores,
+                r.all_cores / r.one_thread,
+                if r.same_answers {
+                    ""
+                } else {
+                    "  [ANSWERS DIFFER]"
+                }
+            );
+        }
+        all.push(parallel::to_json(id.name(), &rows));
+        match report::write_parallel(&all, out) {
+            Ok(files) => println!("wrote {files}"),
+            Err(e) => println!("could not write the results into {}: {e}", out.display()),
+        }
+    }
 }
 
 /// A scene's triangles and workload.
@@ -79,6 +120,10 @@ fn main() {
         || PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../bench"),
         PathBuf::from,
     );
+    if std::env::args().any(|a| a == "--parallel") {
+        run_parallel(&scenes, &size, repeats, &out);
+        return;
+    }
     let mut run_result = Run::new(quick, &size, repeats);
     println!("{}", report::header_text());
     for id in scenes {

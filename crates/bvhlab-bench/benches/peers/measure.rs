@@ -88,7 +88,7 @@ pub struct Repeats {
 }
 
 /// The median of `count` timings of `f`, in seconds.
-fn median_secs(count: usize, mut f: impl FnMut()) -> f64 {
+pub fn median_secs(count: usize, mut f: impl FnMut()) -> f64 {
     let mut times: Vec<f64> = (0..count.max(1))
         .map(|_| {
             let start = Instant::now();

@@ -180,15 +180,52 @@ fn lib_json(r: &LibResult, triangles: usize) -> Value {
     })
 }
 
-/// Writes `results.json` and `RESULTS.md` into `dir`, reading `dir/wasm.json` if present.
+/// A JSON file's value, if it is there and parses.
+fn read_json(path: &Path) -> Option<Value> {
+    std::fs::read_to_string(path)
+        .ok()
+        .and_then(|s| serde_json::from_str(&s).ok())
+}
+
+/// Writes the `--parallel` run's scenes into `dir/parallel.json`, and renders `RESULTS.md`
+/// again from `dir/results.json` (when a single-threaded run left one) with them.
+///
+/// # Errors
+/// When a file cannot be written.
+pub fn write_parallel(scenes: &[Value], dir: &Path) -> std::io::Result<String> {
+    std::fs::create_dir_all(dir)?;
+    let parallel = json!({
+        "cores": std::thread::available_parallelism().map_or(1, std::num::NonZero::get),
+        "date": machine()["date"],
+        "scenes": scenes,
+    });
+    let path = dir.join("parallel.json");
+    std::fs::write(
+        &path,
+        serde_json::to_string_pretty(&parallel).unwrap_or_default(),
+    )?;
+    let Some(mut all) = read_json(&dir.join("results.json")) else {
+        return Ok(path.display().to_string());
+    };
+    all["parallel"] = parallel;
+    let md = dir.join("RESULTS.md");
+    std::fs::write(&md, crate::report_md::markdown(&all))?;
+    std::fs::write(
+        dir.join("results.json"),
+        serde_json::to_string_pretty(&all).unwrap_or_default(),
+    )?;
+    Ok(format!("{} and {}", path.display(), md.display()))
+}
+
+/// Writes `results.json` and `RESULTS.md` into `dir`, reading `dir/wasm.json` and
+/// `dir/parallel.json` if present.
 ///
 /// # Errors
 /// When a file cannot be written.
 pub fn write(run: &Run, dir: &Path) -> std::io::Result<String> {
     std::fs::create_dir_all(dir)?;
-    let wasm: Option<Value> = std::fs::read_to_string(dir.join("wasm.json"))
-        .ok()
-        .and_then(|s| serde_json::from_str(&s).ok());
+    let wasm = read_json(&dir.join("wasm.json"));
+    let parallel = read_json(&dir.join("parallel.json"));
     let scenes: Vec<Value> = run
         .scenes
         .iter()
@@ -211,6 +248,7 @@ pub fn write(run: &Run, dir: &Path) -> std::io::Result<String> {
         },
         "native": scenes,
         "wasm": wasm,
+        "parallel": parallel,
     });
     let json_text = serde_json::to_string_pretty(&all).unwrap_or_default();
     std::fs::write(dir.join("results.json"), json_text)?;

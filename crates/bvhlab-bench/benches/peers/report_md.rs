@@ -202,6 +202,46 @@ fn wasm_section(md: &mut String, all: &Value) {
     }
 }
 
+fn parallel_section(md: &mut String, all: &Value) {
+    let par = &all["parallel"];
+    let Some(scenes) = par["scenes"].as_array() else {
+        md.push_str("\n## Both cores\n\nNot measured in this run (`compare.sh` measures it, unpinned, after the single-threaded runs).\n");
+        return;
+    };
+    let _ = writeln!(
+        md,
+        "\n## Both cores (bvhlab's `parallel` feature, {} cores, unpinned, {})\n\nThe batch calls (`ray_first_hits`, `ray_any_hits`, `closest_points`; closest points answered in Morton order) and the build, in a rayon pool of one thread and of every core, on the same workload (a shadow ray's limit is put in its direction, so the batch takes one limit). Queries (triangles for the build) per second, in millions; the speed-up is every core ÷ one thread. \"same\": both pools gave the same answers (the same tree for the build).\n\n| scene | what | one thread | every core | speed-up | same |\n{}",
+        par["cores"],
+        par["date"].as_str().unwrap_or_default(),
+        "| --- ".repeat(6) + "|"
+    );
+    for scene in scenes {
+        for row in scene["rows"].as_array().into_iter().flatten() {
+            let per_s = |k: &str| {
+                row[k]
+                    .as_f64()
+                    .map_or_else(|| "n/a".into(), |x| format!("{:.2}", x / 1e6))
+            };
+            let _ = writeln!(
+                md,
+                "| {} | {} | {} | {} | {} | {} |",
+                scene["scene"].as_str().unwrap_or_default(),
+                row["what"].as_str().unwrap_or_default(),
+                per_s("one_thread_per_s"),
+                per_s("all_cores_per_s"),
+                row["speedup"]
+                    .as_f64()
+                    .map_or_else(|| "n/a".into(), |x| format!("{x:.2}x")),
+                if row["same_answers"].as_bool() == Some(true) {
+                    "yes"
+                } else {
+                    "NO"
+                },
+            );
+        }
+    }
+}
+
 fn disagreements(md: &mut String, all: &Value) {
     md.push_str("\n## Disagreements with bvhlab\n\nA ray disagrees when one library hits and the other misses, or both hit with `t` more than 1e-5 apart relative; a closest point when the distances differ by more than 1e-5 relative. bvhlab's answers equal brute force's (its tests check that), so each line is the peer's. Up to five examples each: (index, bvhlab, peer).\n\n");
     let mut any = false;
@@ -294,6 +334,7 @@ pub fn markdown(all: &Value) -> String {
         ratio_table(&mut md, scene);
     }
     wasm_section(&mut md, all);
+    parallel_section(&mut md, all);
     disagreements(&mut md, all);
     md
 }
