@@ -1,10 +1,17 @@
 // The WebAssembly half of the peer comparison (issue 7): bvhlab compiled to wasm32 with SIMD128
 // (the module built by compare.sh with wasm-bindgen --target nodejs) against three-mesh-bvh
-// (SAH strategy) in this one node process, on the same triangles, rays and points, which the
-// wasm module generates with the native comparison's workload code.
+// (SAH strategy) and parry3d inside @dimforge/rapier3d-compat (issue 19; rapier.mjs) in this
+// one node process, on the same triangles, rays and points, which the wasm module generates
+// with the native comparison's workload code. The ray kinds are the module's (`kind_names`).
 //
-// Usage: node run.mjs --pkg DIR --meshes DIR --out FILE [--quick]
+// Usage: node run.mjs --pkg DIR --meshes DIR --out FILE [--quick] [--scenes bunny,ogre]
+//        [--clock cpu]
 // Writes FILE (JSON) for the native comparison to merge into bench/RESULTS.md.
+//
+// `--clock cpu` times with the process's CPU time (user + system, every thread of node)
+// instead of the wall clock: on a machine other jobs share, the wall clock counts their time
+// slices too, while the CPU time of a process pinned to one core (taskset) counts what a
+// quiet machine's wall clock would, less the other jobs' cache damage.
 
 import { readFileSync, writeFileSync } from 'node:fs';
 import { createRequire } from 'node:module';
@@ -12,6 +19,15 @@ import { join } from 'node:path';
 import { performance } from 'node:perf_hooks';
 import * as THREE from 'three';
 import { MeshBVH, SAH } from 'three-mesh-bvh';
+import {
+	RapierScene,
+	indexedMesh,
+	oneTriangle,
+	parryVersion,
+	rapierClosest,
+	rapierFirstHits,
+	rapierVersion,
+} from './rapier.mjs';
 
 const require = createRequire(import.meta.url);
 const args = process.argv.slice(2);
@@ -29,21 +45,41 @@ const REPEATS = quick ? 2 : 5;
 // five repeats under a minute.
 const MAX_POINTS = quick ? 20000 : 100000;
 const TOLERANCE = 1e-5;
-const SCENES = quick
-	? [['bunny', 'stanford-bunny.obj']]
-	: [['bunny', 'stanford-bunny.obj'], ['dragon', 'dragon.obj'], ['ogre', 'ogre.obj']];
+const ALL_SCENES = [['bunny', 'stanford-bunny.obj'], ['dragon', 'dragon.obj'], ['ogre', 'ogre.obj']];
+const only = arg('--scenes')?.split(',');
+const SCENES = only
+	? ALL_SCENES.filter(([name]) => only.includes(name))
+	: ALL_SCENES.slice(0, quick ? 1 : ALL_SCENES.length);
 
-/** The median of REPEATS timings of f, in seconds, and f's last result. */
-function median(f) {
-	const times = [];
-	let result;
+const CLOCK = arg('--clock') ?? 'wall';
+if (CLOCK !== 'wall' && CLOCK !== 'cpu') throw new Error(`--clock ${CLOCK}: use wall or cpu`);
+/** Milliseconds on the chosen clock. */
+const now =
+	CLOCK === 'cpu'
+		? () => {
+				const { user, system } = process.cpuUsage();
+				return (user + system) / 1000;
+			}
+		: () => performance.now();
+
+/**
+ * Times each of `fs` REPEATS times, round robin, so that a change in the machine's load falls
+ * on every library alike; returns, for each, its median time in seconds and its last result.
+ */
+function medians(fs) {
+	const times = fs.map(() => []);
+	const results = [];
 	for (let i = 0; i < REPEATS; i++) {
-		const start = performance.now();
-		result = f();
-		times.push((performance.now() - start) / 1000);
+		fs.forEach((f, j) => {
+			const start = now();
+			results[j] = f();
+			times[j].push((now() - start) / 1000);
+		});
 	}
-	times.sort((a, b) => a - b);
-	return [times[Math.floor(times.length / 2)], result];
+	return times.map((t, j) => {
+		t.sort((a, b) => a - b);
+		return [t[Math.floor(t.length / 2)], results[j]];
+	});
 }
 
 /** Same answer: both misses (-1), or distances within TOLERANCE relative (floor: `floor`). */
@@ -86,52 +122,124 @@ function threeClosest(bvh, points) {
 	return out;
 }
 
-function runScene(name, file) {
-	const bench = new WasmBench(readFileSync(join(meshes, file)), quick, MAX_POINTS);
-	const kinds = WasmBench.kind_names();
-	const positions = bench.positions();
-	const points = bench.points();
-	let lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+/**
+ * A rate as called (`count` queries in `seconds`) and with the binding's per-call overhead
+ * subtracted (`yardstick`: the same calls on a one-triangle collider, in seconds); `net` is
+ * null when the overhead is not below the time (nothing left to rate).
+ */
+function rates(count, seconds, yardstick) {
+	const net = seconds - yardstick;
+	return { gross: count / seconds, net: net > 0 ? count / net : null, overheadUs: (yardstick / count) * 1e6 };
+}
+
+/** The bounding box's half diagonal times 1e-6: the floor of the relative tolerance. */
+function distanceFloor(positions) {
+	const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
 	for (let i = 0; i < positions.length; i++) {
 		lo[i % 3] = Math.min(lo[i % 3], positions[i]);
 		hi[i % 3] = Math.max(hi[i % 3], positions[i]);
 	}
-	const floor = 1e-6 * 0.5 * Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
+	return 1e-6 * 0.5 * Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
+}
 
-	const ours = { library: 'bvhlab 4-wide AABB tree (wasm32 + simd128)', is_bvhlab: true, mrays: {}, disagreements: {} };
-	const three = { library: 'three-mesh-bvh 0.9.17 (SAH)', is_bvhlab: false, mrays: {}, disagreements: {} };
+/** The three libraries' rows, before their numbers. */
+function libraryRows() {
+	const row = (library, extra = {}) => ({ library, is_bvhlab: false, mrays: {}, disagreements: {}, ...extra });
+	return {
+		ours: row('bvhlab 4-wide AABB tree (wasm32 + simd128)', { is_bvhlab: true }),
+		three: row(`three-mesh-bvh ${version('three-mesh-bvh')} (SAH)`),
+		rapier: row(`rapier3d-compat ${rapierVersion} (parry3d ${parryVersion()} trimesh collider)`, {
+			mrays_net: {},
+			overhead_us: {},
+		}),
+	};
+}
 
-	const [ourBuild] = median(() => bench.build());
-	ours.build_ms = ourBuild * 1000;
+/**
+ * Builds each library's structure REPEATS times (interleaved) and returns what answers the
+ * queries: three-mesh-bvh's MeshBVH and rapier's trimesh collider, with the one-triangle
+ * collider whose calls measure rapier's per-call overhead.
+ */
+function buildAll(bench, positions, rapierScene, { ours, three, rapier }) {
 	const geometries = Array.from({ length: REPEATS }, () => {
 		const g = new THREE.BufferGeometry();
 		g.setAttribute('position', new THREE.BufferAttribute(positions.slice(), 3));
 		return g;
 	});
+	const { vertices, indices } = indexedMesh(positions);
 	let g = 0;
 	let bvh;
-	const [threeBuild] = median(() => (bvh = new MeshBVH(geometries[g++], { strategy: SAH })));
-	three.build_ms = threeBuild * 1000;
+	// One collider per repeat, each timed from the descriptor to the collider in the World.
+	const colliders = [];
+	const [[tOurs], [tThree], [tRapier]] = medians([
+		() => bench.build(),
+		() => (bvh = new MeshBVH(geometries[g++], { strategy: SAH })),
+		() => colliders.push(rapierScene.build(vertices, indices)),
+	]);
+	ours.build_ms = tOurs * 1000;
+	three.build_ms = tThree * 1000;
+	rapier.build_ms = tRapier * 1000;
+	const collider = colliders.pop();
+	for (const c of colliders) rapierScene.remove(c);
+	return { bvh, collider, tiny: oneTriangle(rapierScene, positions) };
+}
 
+function runScene(name, file) {
+	const bench = new WasmBench(readFileSync(join(meshes, file)), quick, MAX_POINTS);
+	const kinds = WasmBench.kind_names();
+	const positions = bench.positions();
+	const points = bench.points();
+	const floor = distanceFloor(positions);
+	const rows = libraryRows();
+	const { ours, three, rapier } = rows;
+	const rapierScene = new RapierScene();
+	const { bvh, collider, tiny } = buildAll(bench, positions, rapierScene, rows);
+
+	// bvhlab's answers are the ones the peers' are checked against.
 	kinds.forEach((kind, k) => {
 		const rays = bench.rays(k);
 		const n = rays.length / 7;
-		const [tOurs, want] = median(() => bench.first_hits(k));
-		const [tThree, have] = median(() => threeFirstHits(bvh, rays));
+		const [[tOurs, want], [tThree, haveThree], [tRapier, haveRapier], [yardstick]] = medians([
+			() => bench.first_hits(k),
+			() => threeFirstHits(bvh, rays),
+			() => rapierFirstHits(collider, rays),
+			() => rapierFirstHits(tiny, rays),
+		]);
+		const r = rates(n, tRapier, yardstick);
 		ours.mrays[kind] = n / tOurs / 1e6;
 		three.mrays[kind] = n / tThree / 1e6;
+		rapier.mrays[kind] = r.gross / 1e6;
+		rapier.mrays_net[kind] = r.net === null ? null : r.net / 1e6;
+		rapier.overhead_us[kind] = r.overheadUs;
 		ours.disagreements[kind] = 0;
-		three.disagreements[kind] = countDisagreements(want, have, floor);
+		three.disagreements[kind] = countDisagreements(want, haveThree, floor);
+		rapier.disagreements[kind] = countDisagreements(want, haveRapier, floor);
 	});
-	const [cOurs, want] = median(() => bench.closest());
-	const [cThree, have] = median(() => threeClosest(bvh, points));
 	const m = points.length / 3;
+	const [[cOurs, want], [cThree, haveThree], [cRapier, haveRapier], [yardstick]] = medians([
+		() => bench.closest(),
+		() => threeClosest(bvh, points),
+		() => rapierClosest(collider, points),
+		() => rapierClosest(tiny, points),
+	]);
+	const r = rates(m, cRapier, yardstick);
 	ours.closest_per_s = m / cOurs;
 	three.closest_per_s = m / cThree;
+	rapier.closest_per_s = r.gross;
+	rapier.closest_per_s_net = r.net;
+	rapier.overhead_us.closest = r.overheadUs;
 	ours.closest_disagreements = 0;
-	three.closest_disagreements = countDisagreements(want, have, floor);
+	three.closest_disagreements = countDisagreements(want, haveThree, floor);
+	rapier.closest_disagreements = countDisagreements(want, haveRapier, floor);
+	rapierScene.free();
 	bench.free();
-	for (const lib of [ours, three]) {
+	printScene(name, kinds, rows);
+	return { scene: name, triangles: positions.length / 9, points: m, libraries: [ours, three, rapier] };
+}
+
+function printScene(name, kinds, { ours, three, rapier }) {
+	const fixed = (x, d) => (x === null ? 'n/a' : x.toFixed(d));
+	for (const lib of [ours, three, rapier]) {
 		const rates = kinds.map((k) => `${k} ${lib.mrays[k].toFixed(2)}`).join(', ');
 		console.log(
 			`${name}: ${lib.library}: build ${lib.build_ms.toFixed(1)} ms, Mrays/s ${rates}, ` +
@@ -139,15 +247,26 @@ function runScene(name, file) {
 				`${JSON.stringify(lib.disagreements)} closest ${lib.closest_disagreements}`,
 		);
 	}
-	return { scene: name, triangles: positions.length / 9, points: m, libraries: [ours, three] };
+	const overhead = Object.entries(rapier.overhead_us).map(([k, us]) => `${k} ${us.toFixed(2)}`);
+	const net = kinds.map((k) => `${k} ${fixed(rapier.mrays_net[k], 2)}`);
+	const closest = rapier.closest_per_s_net === null ? null : rapier.closest_per_s_net / 1e3;
+	console.log(
+		`${name}: rapier less its per-call overhead (µs per call: ${overhead.join(', ')}): ` +
+			`Mrays/s ${net.join(', ')}, closest ${fixed(closest, 0)}k/s`,
+	);
 }
 
-const version = (pkg) =>
-	JSON.parse(readFileSync(join(import.meta.dirname, 'node_modules', pkg, 'package.json'), 'utf8')).version;
+function version(pkg) {
+	return JSON.parse(readFileSync(join(import.meta.dirname, 'node_modules', pkg, 'package.json'), 'utf8')).version;
+}
 const result = {
 	node: process.version,
 	three: version('three'),
 	three_mesh_bvh: version('three-mesh-bvh'),
+	rapier: rapierVersion,
+	parry: parryVersion(),
+	kinds: WasmBench.kind_names(),
+	clock: CLOCK,
 	repeats: REPEATS,
 	max_points: MAX_POINTS,
 	scenes: SCENES.map(([name, file]) => runScene(name, file)),
