@@ -11,7 +11,7 @@
 # batch queries on both cores (`--parallel`, unpinned), added to bench/RESULTS.md.
 #
 # 1. builds bvhlab for wasm32-unknown-unknown with +simd128 (crates/bvhlab-bench-wasm) and its
-#    bindings (wasm-bindgen --target nodejs), installs three and three-mesh-bvh (pinned in
+#    bindings (wasm-bindgen --target nodejs), installs three, three-mesh-bvh and @dimforge/rapier3d-compat (pinned in
 #    crates/bvhlab-bench-wasm/js/package-lock.json), and times both in one node process
 #    (bench/wasm.json);
 # 2. runs the native comparison (cargo bench --bench peers), which writes bench/results.json
