@@ -91,6 +91,26 @@ export function rapierFirstHits(collider, rays) {
 }
 
 /**
+ * `Collider.intersectsRay` for every ray (occlusion: blocked within t_max or not), 1 or 0.
+ */
+export function rapierOccluded(collider, rays) {
+	const ray = new RAPIER.Ray({ x: 0, y: 0, z: 0 }, { x: 0, y: 0, z: 1 });
+	const n = rays.length / 7;
+	const out = new Uint8Array(n);
+	for (let i = 0; i < n; i++) {
+		const k = 7 * i;
+		ray.origin.x = rays[k];
+		ray.origin.y = rays[k + 1];
+		ray.origin.z = rays[k + 2];
+		ray.dir.x = rays[k + 3];
+		ray.dir.y = rays[k + 4];
+		ray.dir.z = rays[k + 5];
+		out[i] = collider.intersectsRay(ray, rays[k + 6]) ? 1 : 0;
+	}
+	return out;
+}
+
+/**
  * `Collider.projectPoint` for every point, `solid` false so that a point inside the (closed)
  * mesh still projects onto its surface, as the distance to the nearest triangle asks.
  */

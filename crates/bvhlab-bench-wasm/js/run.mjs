@@ -26,6 +26,7 @@ import {
 	parryVersion,
 	rapierClosest,
 	rapierFirstHits,
+	rapierOccluded,
 	rapierVersion,
 } from './rapier.mjs';
 
@@ -45,6 +46,8 @@ const REPEATS = quick ? 2 : 5;
 // five repeats under a minute.
 const MAX_POINTS = quick ? 20000 : 100000;
 const TOLERANCE = 1e-5;
+/** The column of the shadow rays asked as occlusion (any hit). */
+const OCCLUSION = 'shadow as occlusion';
 const ALL_SCENES = [['bunny', 'stanford-bunny.obj'], ['dragon', 'dragon.obj'], ['ogre', 'ogre.obj']];
 const only = arg('--scenes')?.split(',');
 const SCENES = only
@@ -215,6 +218,32 @@ function runScene(name, file) {
 		three.disagreements[kind] = countDisagreements(want, haveThree, floor);
 		rapier.disagreements[kind] = countDisagreements(want, haveRapier, floor);
 	});
+	// The shadow rays again as occlusion (any hit): bvhlab's any-hit walk and rapier's
+	// `intersectsRay`; three-mesh-bvh has no such call. Verdicts are checked against
+	// bvhlab's first hits.
+	const shadow = kinds.indexOf('shadow');
+	if (shadow >= 0) {
+		const rays = bench.rays(shadow);
+		const n = rays.length / 7;
+		const first = bench.first_hits(shadow);
+		// One untimed call each first: the other kinds warmed their first-hit calls up.
+		bench.any_hits(shadow);
+		rapierOccluded(collider, rays);
+		rapierOccluded(tiny, rays);
+		const [[tOurs, oursBlocked], [tRapier, rapierBlocked], [yardstick]] = medians([
+			() => bench.any_hits(shadow),
+			() => rapierOccluded(collider, rays),
+			() => rapierOccluded(tiny, rays),
+		]);
+		const wrong = (blocked) => first.reduce((sum, t, i) => sum + ((t >= 0) !== (blocked[i] === 1) ? 1 : 0), 0);
+		const r = rates(n, tRapier, yardstick);
+		ours.mrays[OCCLUSION] = n / tOurs / 1e6;
+		rapier.mrays[OCCLUSION] = r.gross / 1e6;
+		rapier.mrays_net[OCCLUSION] = r.net === null ? null : r.net / 1e6;
+		rapier.overhead_us[OCCLUSION] = r.overheadUs;
+		ours.disagreements[OCCLUSION] = wrong(oursBlocked);
+		rapier.disagreements[OCCLUSION] = wrong(rapierBlocked);
+	}
 	const m = points.length / 3;
 	const [[cOurs, want], [cThree, haveThree], [cRapier, haveRapier], [yardstick]] = medians([
 		() => bench.closest(),
@@ -233,14 +262,14 @@ function runScene(name, file) {
 	rapier.closest_disagreements = countDisagreements(want, haveRapier, floor);
 	rapierScene.free();
 	bench.free();
-	printScene(name, kinds, rows);
+	printScene(name, kinds.concat(shadow >= 0 ? [OCCLUSION] : []), rows);
 	return { scene: name, triangles: positions.length / 9, points: m, libraries: [ours, three, rapier] };
 }
 
 function printScene(name, kinds, { ours, three, rapier }) {
 	const fixed = (x, d) => (x === null ? 'n/a' : x.toFixed(d));
 	for (const lib of [ours, three, rapier]) {
-		const rates = kinds.map((k) => `${k} ${lib.mrays[k].toFixed(2)}`).join(', ');
+		const rates = kinds.map((k) => `${k} ${fixed(lib.mrays[k] ?? null, 2)}`).join(', ');
 		console.log(
 			`${name}: ${lib.library}: build ${lib.build_ms.toFixed(1)} ms, Mrays/s ${rates}, ` +
 				`closest ${(lib.closest_per_s / 1e3).toFixed(0)}k/s, disagreements ` +
@@ -265,7 +294,8 @@ const result = {
 	three_mesh_bvh: version('three-mesh-bvh'),
 	rapier: rapierVersion,
 	parry: parryVersion(),
-	kinds: WasmBench.kind_names(),
+	// The ray kinds, and the shadow rays asked as occlusion.
+	kinds: WasmBench.kind_names().concat([OCCLUSION]),
 	clock: CLOCK,
 	repeats: REPEATS,
 	max_points: MAX_POINTS,

@@ -122,6 +122,24 @@ impl WasmBench {
         })
     }
 
+    /// Whether each ray of kind `kind` is blocked within its `t_max` (1) or not (0), by the
+    /// 4-wide tree's any-hit walk (occlusion; empty before `build`).
+    pub fn any_hits(&self, kind: usize) -> Vec<u8> {
+        let Some(tree) = &self.tree else {
+            return Vec::new();
+        };
+        self.prepared.get(kind).map_or_else(Vec::new, |rays| {
+            rays.iter()
+                .map(|(ray, t_max)| {
+                    u8::from(
+                        ray.as_ref()
+                            .is_some_and(|ray| tree.ray_any_hit(ray, *t_max).is_some()),
+                    )
+                })
+                .collect()
+        })
+    }
+
     /// The distance from every query point to the nearest triangle (`-1` before `build`).
     pub fn closest(&self) -> Vec<f32> {
         let Some(tree) = &self.tree else {
