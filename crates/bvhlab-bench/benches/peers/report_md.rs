@@ -168,7 +168,7 @@ fn wasm_section(md: &mut String, all: &Value) {
                 ", @dimforge/rapier3d-compat {v} (parry3d {})",
                 wasm["parry"].as_str().unwrap_or("?")
             ),
-            " and parry3d inside rapier's published module (one trimesh collider in a `World`, asked with `Collider.castRay` and `Collider.projectPoint`, each call crossing the JS-wasm boundary as a rapier user's does)",
+            " and parry3d inside rapier's published module (one trimesh collider in a `World`, asked with `Collider.castRay`, `Collider.intersectsRay` (the occlusion column) and `Collider.projectPoint`, each call crossing the JS-wasm boundary as a rapier user's does)",
         )
     });
     let clock = if wasm["clock"] == "cpu" {
