@@ -20,7 +20,8 @@
 //! in blocks of four tested by a four-lane copy of the watertight test: 0.66-1.03x (random
 //! rays 0.66-0.76x), and 0.70-1.00x with AVX-512, since the binned SAH leaves hold 1.8
 //! triangles on average and a block costs more than two scalar tests; testing a node's leaf
-//! lanes where it is met (as `nearest.rs` does): no change. Their code is on the branches
+//! lanes where it is met (as `nearest.rs` does), or the whole triangle test inlined into
+//! the walk: no change. Their code is on the branches
 //! `helper-walk-octant-experiment` and `helper-walk-blocks-experiment`.
 //!
 //! [`NodeVolume::ray_entry`]: crate::structure::bvh::NodeVolume::ray_entry
