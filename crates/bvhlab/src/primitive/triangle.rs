@@ -118,6 +118,7 @@ impl Triangle3 {
     /// `f64` arithmetic of `exact.wgsl` beside it) in the app's heat map shader
     /// (`crates/bvhlab-app/src/render3d/heatmap/trace.wgsl`), which must give the same hits and `t`
     /// bit for bit: a change here (or in `RayShear::of`) must be made there too.
+    #[inline]
     pub fn ray_hit(&self, ray: &Ray3) -> Option<f32> {
         let (corners, weights, det) = self.sheared_weights(ray)?;
         let t_scaled = weights[0] * f64::from(corners[0].z)
@@ -135,6 +136,7 @@ impl Triangle3 {
     /// sheared ([`RayShear`], made with the ray), the weights of a, b and c (each the edge
     /// value opposite that corner) and their sum, or `None` when the ray's line misses the
     /// triangle or the triangle is degenerate.
+    #[inline]
     fn sheared_weights(&self, ray: &Ray3) -> Option<([Sheared; 3], [f64; 3], f64)> {
         let shear = ray.shear();
         let origin = ray.origin();
@@ -152,7 +154,18 @@ impl Triangle3 {
         let edge = |p: Sheared, q: Sheared| {
             f64::from(p.x) * f64::from(q.y) - f64::from(p.y) * f64::from(q.x)
         };
-        let (u, v, w) = (edge(c, b), edge(a, c), edge(b, a));
+        // Two edge values of opposite signs already put the line outside, whatever the
+        // third: the full test below refuses it too, so leaving early changes no answer (a
+        // NaN fails both tests alike), and the WGSL mirror, which does not leave early,
+        // still agrees bit for bit (tests/triangle_ray_exact.rs checks this against the full
+        // test). Most rays that reach a leaf miss most of its triangles: this spares them a
+        // third of the f64 work, 2-10% of the wide tree's first hits (issue 19, measured on
+        // the bunny and the dragon).
+        let (u, v) = (edge(c, b), edge(a, c));
+        if (u < 0.0 && v > 0.0) || (u > 0.0 && v < 0.0) {
+            return None;
+        }
+        let w = edge(b, a);
         if (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0) {
             return None;
         }
@@ -282,6 +295,7 @@ impl Primitive for Triangle3 {
     fn centroid(&self) -> Vec3 {
         (self.a + self.b + self.c) / 3.0
     }
+    #[inline]
     fn ray_hit(&self, ray: &Ray3) -> Option<f32> {
         Triangle3::ray_hit(self, ray)
     }

@@ -15,6 +15,11 @@
 //! therefore the binary tree's, bit for bit. The any hit is *a* hit the binary tree (and
 //! brute force) also reports, found whenever they find one; which one it is may differ,
 //! since the binary any-hit walk visits nearer boxes first.
+//!
+//! Visiting nearer boxes first does not pay here: on the shadow rays of the bunny and the
+//! dragon (about half of them blocked), sorting the inner lanes by entry `t` made the walk
+//! 0.87-0.89x as fast, and a child order per ray octant fixed when the tree is made
+//! 0.88-0.96x (nearest or farthest first), against lane order (issue 19).
 
 use super::layout::{Bvh4, Bvh4Node, WIDTH};
 use super::nearest::leaf_lanes;
