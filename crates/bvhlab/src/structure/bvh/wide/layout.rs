@@ -17,7 +17,9 @@
 //!
 //! [`volume`]: crate::structure::bvh::volume
 
-use crate::structure::bvh::build::build_sah_box_parts;
+#[cfg(feature = "parallel")]
+use crate::structure::bvh::build::build_sah_box_parts_parallel;
+use crate::structure::bvh::build::{TreeParts, build_sah_box_parts};
 use crate::structure::bvh::layout::BvhNode;
 use crate::structure::bvh::{Bvh, BvhOptions, SplitMethod};
 use crate::volume::{Aabb, BoundingVolume};
@@ -148,13 +150,37 @@ impl<P: Primitive> Bvh4<P> {
             return Self::from_bvh(&Bvh::build_with(prims, options));
         }
         let parts = build_sah_box_parts::<Aabb<P::Point>, P>(prims, options);
+        Self::from_parts(parts, prims.len())
+    }
+
+    /// [`build`](Self::build) on every core (the `parallel` feature): the same tree, bit for
+    /// bit.
+    #[cfg(feature = "parallel")]
+    pub fn build_parallel(prims: &[P]) -> Self {
+        Self::build_with_parallel(prims, &BvhOptions::default())
+    }
+
+    /// [`build_with`](Self::build_with) on every core (the `parallel` feature): the binary
+    /// tree of [`Bvh::build_with_parallel`] (the serial build's, bit for bit), collapsed as
+    /// [`build_with`](Self::build_with) collapses it.
+    #[cfg(feature = "parallel")]
+    pub fn build_with_parallel(prims: &[P], options: &BvhOptions) -> Self {
+        if options.method != SplitMethod::BinnedSah {
+            return Self::from_bvh(&Bvh::build_with(prims, options));
+        }
+        let parts = build_sah_box_parts_parallel::<Aabb<P::Point>, P>(prims, options);
+        Self::from_parts(parts, prims.len())
+    }
+
+    /// The collapse of a binary tree's parts, built over `input_len` primitives.
+    fn from_parts(parts: TreeParts<Aabb<P::Point>, P>, input_len: usize) -> Self {
         let (nodes, depth) = collapse(&parts.nodes);
         Self {
             nodes,
             leaf_prims: parts.leaf_prims,
             leaf_ids: parts.leaf_ids,
             depth,
-            input_len: prims.len(),
+            input_len,
             build_sah_cost: None,
         }
         .with_build_cost()
