@@ -38,6 +38,7 @@ cargo bench --workspace --exclude bvhlab-app --no-run
 step "lints (native, then the core and the lab for wasm32)"
 cargo clippy --workspace --all-targets -- -D warnings
 cargo clippy -p bvhlab --all-features --all-targets -- -D warnings
+cargo clippy -p bvhlab-bench --features parallel --all-targets -- -D warnings
 cargo clippy -p bvhlab -p bvhlab-meshio -p bvhlab-app --target wasm32-unknown-unknown -- -D warnings
 
 step "docs"
