@@ -21,7 +21,7 @@ step "tests (native)"
 BVHLAB_REQUIRE_GPU=1 cargo test --workspace --lib --bins --tests
 cargo test --workspace --doc
 # The core's optional features, which no other crate turns on, in one extra build of the
-# core: saved trees (`serde`) and batch queries on every core (`parallel`).
+# core: saved trees (`serde`), and batch queries and builds on every core (`parallel`).
 cargo test -p bvhlab --features serde,parallel --test saved_trees --test example_save_load --test batch_queries --test bvh_parallel_build
 cargo test -p bvhlab --features serde,parallel --doc
 
@@ -38,7 +38,6 @@ cargo bench --workspace --exclude bvhlab-app --no-run
 step "lints (native, then the core and the lab for wasm32)"
 cargo clippy --workspace --all-targets -- -D warnings
 cargo clippy -p bvhlab --all-features --all-targets -- -D warnings
-cargo clippy -p bvhlab-bench --features parallel --all-targets -- -D warnings
 cargo clippy -p bvhlab -p bvhlab-meshio -p bvhlab-app --target wasm32-unknown-unknown -- -D warnings
 
 step "docs"

@@ -2,12 +2,13 @@
 //! shows as time per triangle growing like log n), and on the 124k-triangle ogre when the
 //! shared meshes are present.
 //!
-//! With `--features parallel`, also the parallel builds of the AABB tree and of `Bvh4` beside
-//! their serial builds on the comparison's scenes (`build-parallel/<scene>`: the bunny, dragon
-//! and ogre, the 420k torus, the 2M displaced sphere), each row timed in this one process.
+//! Then the parallel builds of the AABB tree and of `Bvh4` (bvhlab's `parallel` feature, which
+//! this crate's benches turn on) beside their serial builds on the comparison's scenes
+//! (`build-parallel/<scene>`: the bunny, dragon and ogre, the 420k torus, the 2M displaced
+//! sphere), both timed in this one process.
 //!
-//! Run: `cargo bench -p bvhlab-bench --bench build`, or
-//! `cargo bench -p bvhlab-bench --bench build --features parallel -- build-parallel`.
+//! Run: `cargo bench -p bvhlab-bench --bench build`, or only the parallel rows:
+//! `cargo bench -p bvhlab-bench --bench build -- build-parallel`.
 
 use bvhlab::{SpatialIndex, Triangle3};
 use bvhlab_bench::{shared_mesh, torus_with};
@@ -69,7 +70,6 @@ fn build(c: &mut Criterion) {
 
 /// The AABB tree and `Bvh4`, built serially and on every core (the same trees), on each scene
 /// of the comparison that loads.
-#[cfg(feature = "parallel")]
 fn parallel_build(c: &mut Criterion) {
     use bvhlab::{AabbTree3, Bvh4};
     use bvhlab_bench::workload::SceneId;
@@ -98,11 +98,6 @@ fn parallel_build(c: &mut Criterion) {
         });
         group.finish();
     }
-}
-
-#[cfg(not(feature = "parallel"))]
-fn parallel_build(_: &mut Criterion) {
-    eprintln!("skipping the parallel builds: run with --features parallel");
 }
 
 criterion_group!(benches, build, parallel_build);
