@@ -203,7 +203,7 @@ where
 /// Appends the subtree over `items` (whose boxes are `boxes`, its root at `depth`) to
 /// `nodes`, depth-first and first child first, with node and leaf indices counted from the
 /// start of `nodes` and of `items` (the whole tree, or a subtree that
-/// [`parallel`](super::parallel) moves into place).
+/// `parallel.rs` moves into place).
 pub(super) fn build_nodes<B: NodeVolume>(
     items: &mut [Item],
     boxes: Boxes,
