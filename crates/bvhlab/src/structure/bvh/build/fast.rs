@@ -173,12 +173,11 @@ where
         "only volumes fitted to the bounds alone"
     );
     let mut items = Vec::with_capacity(prims.len());
-    items.extend(
-        prims
-            .iter()
-            .enumerate()
-            .filter_map(|(index, prim)| Item::indexed(index, prim)),
-    );
+    for (index, prim) in prims.iter().enumerate() {
+        if let Some(item) = Item::indexed(index, prim) {
+            items.push(item);
+        }
+    }
     let n = items.len();
     // A binary tree with at least one primitive per leaf has fewer than 2n nodes.
     let mut nodes = Vec::with_capacity(n.saturating_mul(2).min(1 << 24));
