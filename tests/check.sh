@@ -21,8 +21,8 @@ step "tests (native)"
 BVHLAB_REQUIRE_GPU=1 cargo test --workspace --lib --bins --tests
 cargo test --workspace --doc
 # The core's optional features, which no other crate turns on, in one extra build of the
-# core: saved trees (`serde`) and batch queries on every core (`parallel`).
-cargo test -p bvhlab --features serde,parallel --test saved_trees --test example_save_load --test batch_queries
+# core: saved trees (`serde`), and batch queries and builds on every core (`parallel`).
+cargo test -p bvhlab --features serde,parallel --test saved_trees --test example_save_load --test batch_queries --test bvh_parallel_build
 cargo test -p bvhlab --features serde,parallel --doc
 
 step "fuzzing (libFuzzer on stable Rust: mesh files, scene files, share links, saved trees; 20 s each)"

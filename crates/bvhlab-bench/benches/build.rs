@@ -2,7 +2,13 @@
 //! shows as time per triangle growing like log n), and on the 124k-triangle ogre when the
 //! shared meshes are present.
 //!
-//! Run: `cargo bench -p bvhlab-bench --bench build`.
+//! Then the parallel builds of the AABB tree and of `Bvh4` (bvhlab's `parallel` feature, which
+//! this crate's benches turn on) beside their serial builds on the comparison's scenes
+//! (`build-parallel/<scene>`: the bunny, dragon and ogre, the 420k torus, the 2M displaced
+//! sphere), both timed in this one process.
+//!
+//! Run: `cargo bench -p bvhlab-bench --bench build`, or only the parallel rows:
+//! `cargo bench -p bvhlab-bench --bench build -- build-parallel`.
 
 use bvhlab::{SpatialIndex, Triangle3};
 use bvhlab_bench::{shared_mesh, torus_with};
@@ -62,5 +68,37 @@ fn build(c: &mut Criterion) {
     }
 }
 
-criterion_group!(benches, build);
+/// The AABB tree and `Bvh4`, built serially and on every core (the same trees), on each scene
+/// of the comparison that loads.
+fn parallel_build(c: &mut Criterion) {
+    use bvhlab::{AabbTree3, Bvh4};
+    use bvhlab_bench::workload::SceneId;
+    for id in SceneId::ALL {
+        let tris = match id.triangles() {
+            Ok(tris) => tris,
+            Err(e) => {
+                eprintln!("skipping {}: {e}", id.name());
+                continue;
+            }
+        };
+        let mut group = c.benchmark_group(format!("build-parallel/{}", id.name()));
+        group.sample_size(10);
+        group.throughput(Throughput::Elements(tris.len() as u64));
+        group.bench_function("AABB tree serial", |b| {
+            b.iter(|| AabbTree3::build(black_box(&tris)).nodes().len());
+        });
+        group.bench_function("AABB tree parallel", |b| {
+            b.iter(|| AabbTree3::build_parallel(black_box(&tris)).nodes().len());
+        });
+        group.bench_function("Bvh4 serial", |b| {
+            b.iter(|| Bvh4::build(black_box(&tris)).nodes().len());
+        });
+        group.bench_function("Bvh4 parallel", |b| {
+            b.iter(|| Bvh4::build_parallel(black_box(&tris)).nodes().len());
+        });
+        group.finish();
+    }
+}
+
+criterion_group!(benches, build, parallel_build);
 criterion_main!(benches);

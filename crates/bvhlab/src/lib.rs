@@ -9,7 +9,8 @@
 //!   structures ([`queries`]): [`RayCast`] (`ray_first_hit`, `ray_any_hit`) and
 //!   [`PointQuery`] (`closest_point`, `distance`), each with a batch form over a slice
 //!   (`ray_first_hits`, `closest_points`, ...) that the `parallel` feature spreads over every
-//!   core. Builds take their options the same way everywhere
+//!   core (it also builds the AABB tree and [`Bvh4`] on every core: `build_parallel`, the same
+//!   tree). Builds take their options the same way everywhere
 //!   (`Tree::build_with(&prims, &options)`, the leaf option is `leaf_size`).
 //! - Bounding volumes, each fitted to a point set and each answering [`RayCast`],
 //!   [`PointQuery`] and the queries of [`prelude::BoundingVolume`] (ray interval,

@@ -126,6 +126,7 @@
 //! | [`Bvh::insert`], [`Bvh::remove`], [`Bvh::replace`] (AABB trees) | `update/mod.rs`, placing with `update/search.rs`, editing with `update/splice.rs`, rotating with `update/rotate.rs` |
 //! | [`Bvh::optimize_by_reinsertion`] (AABB trees) | `update/optimize.rs` |
 //! | [`Bvh::build`], [`Bvh::build_with`]: an AABB tree with [`SplitMethod::BinnedSah`] | `build/fast.rs`, in one go |
+//! | `Bvh::build_parallel`, `Bvh::build_with_parallel` (the `parallel` feature): an AABB tree with [`SplitMethod::BinnedSah`] | `build/parallel.rs`, on every core, the same tree; any other tree as [`Bvh::build_with`] |
 //! | [`Bvh::build`], [`Bvh::build_with`]: any other tree; [`Bvh::build_observed`] | `build/mod.rs` and `node_stages.rs`, the resumable builder run to the end |
 //! | [`BvhBuild::step`], [`BvhBuild::finish`] | the same builder, a budget at a time (`build/job.rs`) |
 //! | [`Bvh4::build`], [`Bvh4::build_with`] | with the binned SAH `build/fast.rs`, then the collapse of `wide/layout.rs`; otherwise [`Bvh::build_with`] and [`Bvh4::from_bvh`] |
@@ -199,6 +200,27 @@ where
             return build::build_sah_boxes(prims, options);
         }
         build::build(prims, options, &mut ())
+    }
+
+    /// [`build`](Self::build) on every core (the `parallel` feature): the same tree, bit
+    /// for bit.
+    #[cfg(feature = "parallel")]
+    pub fn build_parallel(prims: &[P]) -> Self {
+        Self::build_with_parallel(prims, &BvhOptions::default())
+    }
+
+    /// [`build_with`](Self::build_with) on every core (the `parallel` feature): the same
+    /// tree, bit for bit (nodes, boxes, leaf order), so a tree built either way answers
+    /// every query alike. The binned-SAH build of a box tree runs in parallel (`build/parallel.rs`:
+    /// the two children of a large node are built at once, and the steps that read every
+    /// primitive near the root are split across threads); every other tree is built as
+    /// [`build_with`](Self::build_with) builds it, on one thread.
+    #[cfg(feature = "parallel")]
+    pub fn build_with_parallel(prims: &[P], options: &BvhOptions) -> Self {
+        if !B::NEEDS_VERTICES && options.method == SplitMethod::BinnedSah {
+            return build::build_sah_boxes_parallel(prims, options);
+        }
+        Self::build_with(prims, options)
     }
 
     /// Builds the tree, reporting each node to `observer` (`BuildNode` when a node is made,

@@ -38,6 +38,18 @@ pub(super) struct Item {
 }
 
 impl Item {
+    /// The item of input primitive `index`, or `None` when it cannot be indexed.
+    #[inline]
+    pub fn indexed<P: Primitive>(index: usize, prim: &P) -> Option<Self> {
+        is_indexable(prim).then(|| {
+            Self::of(&BuildPrim {
+                bounds: prim.bounds(),
+                centroid: prim.centroid(),
+                index: index as u32,
+            })
+        })
+    }
+
     fn of<V: Vector>(prim: &BuildPrim<V>) -> Self {
         let c = lanes(prim.centroid);
         Self {
@@ -79,13 +91,13 @@ struct Job {
 
 /// The bounds and centres of a run of primitives.
 #[derive(Clone, Copy, Debug)]
-struct Boxes {
-    bounds: LaneBox,
-    centroids: LaneBox,
+pub(super) struct Boxes {
+    pub bounds: LaneBox,
+    pub centroids: LaneBox,
 }
 
 impl Boxes {
-    const EMPTY: Self = Self {
+    pub const EMPTY: Self = Self {
         bounds: LaneBox::EMPTY,
         centroids: LaneBox::EMPTY,
     };
@@ -97,7 +109,17 @@ impl Boxes {
         self.centroids = self.centroids.grown(glam::Vec4::new(x, y, z, 0.0));
     }
 
-    fn of(items: &[Item]) -> Self {
+    /// The boxes around both runs (a minimum and a maximum: the order does not matter).
+    #[cfg(feature = "parallel")]
+    #[inline]
+    pub fn merge(&self, other: &Self) -> Self {
+        Self {
+            bounds: self.bounds.merge(&other.bounds),
+            centroids: self.centroids.merge(&other.centroids),
+        }
+    }
+
+    pub fn of(items: &[Item]) -> Self {
         let mut boxes = Self::EMPTY;
         for item in items {
             boxes.add(item);
@@ -152,36 +174,17 @@ where
     );
     let mut items = Vec::with_capacity(prims.len());
     for (index, prim) in prims.iter().enumerate() {
-        if is_indexable(prim) {
-            items.push(Item::of(&BuildPrim {
-                bounds: prim.bounds(),
-                centroid: prim.centroid(),
-                index: index as u32,
-            }));
+        if let Some(item) = Item::indexed(index, prim) {
+            items.push(item);
         }
     }
     let n = items.len();
     // A binary tree with at least one primitive per leaf has fewer than 2n nodes.
     let mut nodes = Vec::with_capacity(n.saturating_mul(2).min(1 << 24));
     if n > 0 {
-        let mut jobs = vec![Job {
-            start: 0,
-            end: n,
-            second_of: None,
-            depth: 0,
-            boxes: Boxes::of(&items),
-        }];
+        let boxes = Boxes::of(&items);
         let mut binner = Binner::new(options.bin_count());
-        while let Some(job) = jobs.pop() {
-            make_node(
-                &job,
-                &mut items,
-                &mut nodes,
-                &mut jobs,
-                &mut binner,
-                options,
-            );
-        }
+        build_nodes(&mut items, boxes, 0, &mut binner, options, &mut nodes);
     }
     nodes.shrink_to_fit();
     let leaf_prims = items
@@ -193,6 +196,30 @@ where
         nodes,
         leaf_prims,
         leaf_ids,
+    }
+}
+
+/// Appends the subtree over `items` (whose boxes are `boxes`, its root at `depth`) to
+/// `nodes`, depth-first and first child first, with node and leaf indices counted from the
+/// start of `nodes` and of `items` (the whole tree, or a subtree that
+/// `parallel.rs` moves into place).
+pub(super) fn build_nodes<B: NodeVolume>(
+    items: &mut [Item],
+    boxes: Boxes,
+    depth: usize,
+    binner: &mut Binner,
+    options: &BvhOptions,
+    nodes: &mut Vec<BvhNode<B>>,
+) {
+    let mut jobs = vec![Job {
+        start: 0,
+        end: items.len(),
+        second_of: None,
+        depth,
+        boxes,
+    }];
+    while let Some(job) = jobs.pop() {
+        make_node(&job, items, nodes, &mut jobs, binner, options);
     }
 }
 
@@ -217,25 +244,15 @@ fn make_node<B: NodeVolume>(
         parent.start = id;
         parent.count = 0;
     }
-    if n <= 1 || job.depth >= options.depth_limit() {
+    if is_forced_leaf(n, job.depth, options) {
         return;
     }
-    let small = n <= options.leaf_limit();
     let items = &mut items[job.start..job.end];
     let cheapest = binner.cheapest::<B::Point>(&job.boxes.bounds, &job.boxes.centroids, items);
-    let (split, left, right) = match cheapest {
-        // Splitting does not pay, or cannot be costed: a leaf, if it is small enough.
-        Some(cheapest) if small && cheapest.cost >= n as f32 => return,
-        None if small => return,
-        Some(cheapest) => {
-            let (count, left, right) = partition(items, &cheapest);
-            debug_assert_eq!(count, cheapest.left, "binning and partition disagree");
-            (count, left, right)
-        }
-        None => {
-            let left = median::<B::Point>(items, &job.boxes.centroids);
-            (left, Boxes::of(&items[..left]), Boxes::of(&items[left..]))
-        }
+    let small = n <= options.leaf_limit();
+    let Some((split, left, right)) = split_node::<B::Point>(items, &job.boxes, cheapest, small)
+    else {
+        return;
     };
     let mid = job.start + split;
     // The first child on top: it is made next, as the recursion would.
@@ -250,6 +267,40 @@ fn make_node<B: NodeVolume>(
             depth: job.depth + 1,
             boxes,
         });
+    }
+}
+
+/// Whether a node of `n` primitives at `depth` is a leaf whatever its binning says: a
+/// single primitive, or the depth limit.
+#[inline]
+pub(super) fn is_forced_leaf(n: usize, depth: usize, options: &BvhOptions) -> bool {
+    n <= 1 || depth >= options.depth_limit()
+}
+
+/// How a node over `items` (with `boxes`) splits, given its cheapest binned plane: the size
+/// of its first child and both children's boxes, after moving the first child's primitives
+/// to the front; or `None` for a leaf (`small`: it has at most `leaf_size` primitives).
+#[inline]
+pub(super) fn split_node<V: Vector>(
+    items: &mut [Item],
+    boxes: &Boxes,
+    cheapest: Option<Cheapest>,
+    small: bool,
+) -> Option<(usize, Boxes, Boxes)> {
+    let n = items.len();
+    match cheapest {
+        // Splitting does not pay, or cannot be costed: a leaf, if it is small enough.
+        Some(cheapest) if small && cheapest.cost >= n as f32 => None,
+        None if small => None,
+        Some(cheapest) => {
+            let (count, left, right) = partition(items, &cheapest);
+            debug_assert_eq!(count, cheapest.left, "binning and partition disagree");
+            Some((count, left, right))
+        }
+        None => {
+            let left = median::<V>(items, &boxes.centroids);
+            Some((left, Boxes::of(&items[..left]), Boxes::of(&items[left..])))
+        }
     }
 }
 

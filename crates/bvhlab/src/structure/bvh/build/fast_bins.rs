@@ -119,6 +119,21 @@ pub(super) struct Cheapest {
     pub left: usize,
 }
 
+/// What a node's binning is planned on: its area, and the `k` axes along which its centres
+/// differ (the first `k` of `axes`).
+#[derive(Clone, Copy, Debug)]
+struct Plan {
+    node_area: f64,
+    axes: [AxisBins; 3],
+    k: usize,
+}
+
+impl Plan {
+    fn axes(&self) -> &[AxisBins] {
+        &self.axes[..self.k]
+    }
+}
+
 /// The per-bin boxes and counts of every axis, reused from node to node: only the bins a
 /// node filled are cleared after it.
 #[derive(Clone, Debug)]
@@ -151,6 +166,18 @@ impl Binner {
         centroids: &LaneBox,
         items: &[super::fast::Item],
     ) -> Option<Cheapest> {
+        let plan = self.plan::<V>(bounds, centroids)?;
+        if let [a, b] = items {
+            return Self::cheapest_of_two::<V>(plan.axes(), [a, b], plan.node_area);
+        }
+        self.fill_planned(&plan, items);
+        self.finish::<V>(&plan)
+    }
+
+    /// The bins of a node: its area and the axes along which its centres differ, or `None`
+    /// when it has no area to cost splits by.
+    #[inline]
+    fn plan<V: Vector>(&self, bounds: &LaneBox, centroids: &LaneBox) -> Option<Plan> {
         let node_area = bounds.half_area::<V>();
         if !(node_area > 0.0 && node_area.is_finite()) {
             return None;
@@ -176,24 +203,85 @@ impl Binner {
                 k += 1;
             }
         }
-        if let [a, b] = items {
-            return Self::cheapest_of_two::<V>(&axes[..k], [a, b], node_area);
+        Some(Plan { node_area, axes, k })
+    }
+
+    /// Puts every item in its bin on each planned axis.
+    #[inline]
+    fn fill_planned(&mut self, plan: &Plan, items: &[super::fast::Item]) {
+        match plan.k {
+            3 => self.fill::<3>(&plan.axes, items),
+            2 => self.fill::<2>(&plan.axes, items),
+            1 => self.fill::<1>(&plan.axes, items),
+            _ => {}
         }
-        match k {
-            3 => self.fill::<3>(&axes, items),
-            2 => self.fill::<2>(&axes, items),
-            1 => self.fill::<1>(&axes, items),
-            _ => return None,
-        }
+    }
+
+    /// The cheapest plane of the filled bins, axis by axis (the first of equal costs); the
+    /// bins are emptied for the next node.
+    #[inline]
+    fn finish<V: Vector>(&mut self, plan: &Plan) -> Option<Cheapest> {
         let mut best: Option<Cheapest> = None;
-        for &bins in &axes[..k] {
-            let curve = self.sweep::<V>(bins, node_area);
+        for &bins in plan.axes() {
+            let curve = self.sweep::<V>(bins, plan.node_area);
             if best.is_none_or(|b| curve.cost < b.cost) {
                 best = Some(curve);
             }
         }
         self.clear();
         best.filter(|b| b.cost.is_finite())
+    }
+
+    /// [`cheapest`](Self::cheapest) with the items binned on every core: each thread fills
+    /// bins of its own over consecutive chunks of at least `chunk` items, and the bins are
+    /// merged. A bin's count is a sum of integers and its box a minimum and a maximum, so
+    /// the merged bins equal those one pass fills, whatever the chunks (up to the sign of a
+    /// zero, which the sweep's areas do not see: a zero side makes a zero product, and the
+    /// costs add it to `1.0`), and the sweep over them is the same sweep.
+    #[cfg(feature = "parallel")]
+    pub fn cheapest_parallel<V: Vector>(
+        &mut self,
+        bounds: &LaneBox,
+        centroids: &LaneBox,
+        items: &[super::fast::Item],
+        chunk: usize,
+    ) -> Option<Cheapest> {
+        use rayon::prelude::*;
+        let plan = self.plan::<V>(bounds, centroids)?;
+        if plan.k == 0 || items.len() <= 2 {
+            return self.cheapest::<V>(bounds, centroids, items);
+        }
+        let bins = self.bins;
+        let filled = items
+            .par_chunks(chunk.max(1))
+            .map(|part| {
+                let mut binner = Self::new(bins);
+                binner.fill_planned(&plan, part);
+                binner
+            })
+            .reduce_with(|mut a, b| {
+                a.absorb(&b);
+                a
+            });
+        if let Some(filled) = filled {
+            self.absorb(&filled);
+        }
+        self.finish::<V>(&plan)
+    }
+
+    /// Adds `other`'s bins to these.
+    #[cfg(feature = "parallel")]
+    fn absorb(&mut self, other: &Self) {
+        for axis in 0..3 {
+            let mut mask = other.occupied[axis];
+            self.occupied[axis] |= mask;
+            while mask != 0 {
+                let i = mask.trailing_zeros() as usize;
+                self.boxes[axis][i] = self.boxes[axis][i].merge(&other.boxes[axis][i]);
+                self.counts[axis][i] += other.counts[axis][i];
+                mask &= mask - 1;
+            }
+        }
     }
 
     /// [`cheapest`](Self::cheapest) of a node of two items (a third of the calls on a mesh),

@@ -28,10 +28,14 @@ pub(super) mod job;
 mod median;
 mod node_stages;
 pub(super) mod options;
+#[cfg(feature = "parallel")]
+mod parallel;
 mod sah;
 pub(super) mod split_log;
 
-pub(super) use fast::{build_sah_box_parts, build_sah_boxes};
+pub(super) use fast::{TreeParts, build_sah_box_parts, build_sah_boxes};
+#[cfg(feature = "parallel")]
+pub(super) use parallel::{build_sah_box_parts_parallel, build_sah_boxes_parallel};
 
 use self::job::{BuildPhase, BuildProgress};
 use self::sah::{SahBinning, SahCurve, SahScratch};

@@ -17,11 +17,19 @@
 //!
 //! [`volume`]: crate::structure::bvh::volume
 
-use crate::structure::bvh::build::build_sah_box_parts;
+#[cfg(feature = "parallel")]
+use super::collapse_parallel::collapse_parallel;
+#[cfg(feature = "parallel")]
+use crate::structure::bvh::build::build_sah_box_parts_parallel;
+use crate::structure::bvh::build::{TreeParts, build_sah_box_parts};
 use crate::structure::bvh::layout::BvhNode;
 use crate::structure::bvh::{Bvh, BvhOptions, SplitMethod};
 use crate::volume::{Aabb, BoundingVolume};
 use crate::{Primitive, Vector};
+
+/// A collapse of a binary tree: its wide nodes and their depth (`collapse` or its parallel
+/// twin).
+type Collapse<V> = fn(&[BvhNode<Aabb<V>>]) -> (Vec<Bvh4Node>, usize);
 
 /// Children per wide node.
 pub const WIDTH: usize = 4;
@@ -60,7 +68,7 @@ const _: () = assert!(size_of::<Bvh4Node>() == 128);
 
 impl Bvh4Node {
     /// A node with every lane unused.
-    const EMPTY: Self = Self {
+    pub(super) const EMPTY: Self = Self {
         planes: [[[f32::INFINITY; WIDTH]; 3], [[f32::NEG_INFINITY; WIDTH]; 3]],
         child: [0; WIDTH],
         count: [0; WIDTH],
@@ -148,13 +156,41 @@ impl<P: Primitive> Bvh4<P> {
             return Self::from_bvh(&Bvh::build_with(prims, options));
         }
         let parts = build_sah_box_parts::<Aabb<P::Point>, P>(prims, options);
+        Self::from_parts(parts, collapse, prims.len())
+    }
+
+    /// [`build`](Self::build) on every core (the `parallel` feature): the same tree, bit for
+    /// bit.
+    #[cfg(feature = "parallel")]
+    pub fn build_parallel(prims: &[P]) -> Self {
+        Self::build_with_parallel(prims, &BvhOptions::default())
+    }
+
+    /// [`build_with`](Self::build_with) on every core (the `parallel` feature): the binary
+    /// tree of [`Bvh::build_with_parallel`] (the serial build's, bit for bit), collapsed into
+    /// the same wide nodes, its subtrees at once (`wide/collapse_parallel.rs`).
+    #[cfg(feature = "parallel")]
+    pub fn build_with_parallel(prims: &[P], options: &BvhOptions) -> Self {
+        if options.method != SplitMethod::BinnedSah {
+            return Self::from_bvh(&Bvh::build_with(prims, options));
+        }
+        let parts = build_sah_box_parts_parallel::<Aabb<P::Point>, P>(prims, options);
+        Self::from_parts(parts, collapse_parallel, prims.len())
+    }
+
+    /// The binary tree's parts (built over `input_len` primitives), collapsed by `collapse`.
+    fn from_parts(
+        parts: TreeParts<Aabb<P::Point>, P>,
+        collapse: Collapse<P::Point>,
+        input_len: usize,
+    ) -> Self {
         let (nodes, depth) = collapse(&parts.nodes);
         Self {
             nodes,
             leaf_prims: parts.leaf_prims,
             leaf_ids: parts.leaf_ids,
             depth,
-            input_len: prims.len(),
+            input_len,
             build_sah_cost: None,
         }
         .with_build_cost()
@@ -220,17 +256,26 @@ impl<P: Primitive> Bvh4<P> {
 
 /// The wide nodes of a binary tree (depth-first from the root, each node's inner children
 /// given consecutive indices when the node is made), and their depth.
-fn collapse<V: Vector>(binary: &[BvhNode<Aabb<V>>]) -> (Vec<Bvh4Node>, usize) {
+pub(super) fn collapse<V: Vector>(binary: &[BvhNode<Aabb<V>>]) -> (Vec<Bvh4Node>, usize) {
     let Some(root) = binary.first() else {
         return (Vec::new(), 0);
     };
-    let mut nodes = vec![Bvh4Node::EMPTY];
     // A leaf root becomes a wide root with one leaf lane.
     let root_lanes = if root.is_leaf() {
         vec![0]
     } else {
         lanes_of(binary, 0)
     };
+    collapse_from(binary, root_lanes)
+}
+
+/// The wide subtree whose root has the binary nodes `root_lanes` as lanes, in
+/// [`collapse`]'s order with the root at index 0, and its depth in wide levels.
+pub(super) fn collapse_from<V: Vector>(
+    binary: &[BvhNode<Aabb<V>>],
+    root_lanes: Vec<u32>,
+) -> (Vec<Bvh4Node>, usize) {
+    let mut nodes = vec![Bvh4Node::EMPTY];
     let mut waiting = vec![(0usize, 1usize, root_lanes)];
     let mut depth = 0;
     while let Some((index, level, lanes)) = waiting.pop() {
@@ -257,7 +302,7 @@ fn collapse<V: Vector>(binary: &[BvhNode<Aabb<V>>]) -> (Vec<Bvh4Node>, usize) {
 /// children, then, while there are fewer than [`WIDTH`], the inner one with the largest
 /// surface area replaced by its two children (in place, so lanes keep the binary tree's
 /// left-to-right order).
-fn lanes_of<V: Vector>(binary: &[BvhNode<Aabb<V>>], id: u32) -> Vec<u32> {
+pub(super) fn lanes_of<V: Vector>(binary: &[BvhNode<Aabb<V>>], id: u32) -> Vec<u32> {
     let children = |id: u32| (id + 1, binary[id as usize].start);
     let (first, second) = children(id);
     let mut lanes = vec![first, second];

@@ -2,6 +2,7 @@
 //! answering as the binary tree does.
 //!
 //! - `layout.rs`: [`Bvh4`] and its 128-byte [`Bvh4Node`], and the collapse of a binary tree.
+//! - `collapse_parallel.rs`: the same collapse on every core (the `parallel` feature).
 //! - `ray.rs`: [`Bvh4::ray_first_hit`], four slab tests at once.
 //! - `any_all_hits.rs`: [`Bvh4::ray_any_hit`] and [`Bvh4::ray_all_hits`], the walk whose
 //!   limit stays `t_max`.
@@ -20,6 +21,8 @@
 //! lab steps through the binary tree.
 
 mod any_all_hits;
+#[cfg(feature = "parallel")]
+mod collapse_parallel;
 mod k_nearest;
 mod layout;
 mod nearest;
