@@ -14,8 +14,9 @@
 //! shared vertices (equal corners merged before timing, as parry3d's input is). The build time
 //! is a user's whole path: new scene, new geometry, the copy of vertices and indices into
 //! buffers Embree allocates (`rtcSetNewGeometryBuffer`), the commits. The device is made with
-//! the input, outside the timing. `set_affinity` is not asked: Embree would pin the calling
-//! thread to a core of its choosing, while the comparison is pinned with `taskset`. Embree's
+//! the input, outside the timing. `set_affinity` is not asked: Embree would pin the threads
+//! entering its scheduler to cores of its choosing, while the run is pinned with `taskset`
+//! (with one thread, Embree builds on the caller's, so its build runs on that core). Embree's
 //! advice to set the flush-to-zero and denormals-are-zero modes is not followed either: they
 //! would change the other libraries' arithmetic in the same process.
 //!
