@@ -42,7 +42,9 @@ rm -f bench/wasm.json
 
 # Intel Embree 3 is a peer behind the bench crate's `embree` feature, which links the system's
 # libembree3 (Debian's libembree-dev): installed here when we are root, else left out.
-have_embree() { { ldconfig -p || /sbin/ldconfig -p; } 2>/dev/null | grep -q 'libembree3\.so '; }
+# (grep reads all of ldconfig's list: `grep -q` would stop early, and under pipefail the
+# broken pipe of ldconfig would count as "missing".)
+have_embree() { { ldconfig -p || /sbin/ldconfig -p; } 2>/dev/null | grep 'libembree3\.so ' >/dev/null; }
 if ! have_embree && [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null; then
   echo "compare.sh: installing libembree-dev (Intel Embree 3) for the Embree row"
   apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq libembree-dev || true
