@@ -38,6 +38,9 @@ cargo bench --workspace --exclude bvhlab-app --no-run
 step "lints (native, then the core and the lab for wasm32)"
 cargo clippy --workspace --all-targets -- -D warnings
 cargo clippy -p bvhlab --all-features --all-targets -- -D warnings
+# The comparison's Embree peer (the bench crate's `embree` feature). Linting does not link, so
+# this needs no libembree3; running it does (crates/bvhlab-bench/compare.sh installs it).
+cargo clippy -p bvhlab-bench --all-targets --features embree -- -D warnings
 cargo clippy -p bvhlab -p bvhlab-meshio -p bvhlab-app --target wasm32-unknown-unknown -- -D warnings
 
 step "docs"

@@ -17,7 +17,8 @@
 # 2. runs the native comparison (cargo bench --bench peers), which writes bench/results.json
 #    and bench/RESULTS.md with the WebAssembly results merged in.
 # Every timed run is pinned to one core (taskset) and single-threaded: tinybvh's C++ is
-# compiled with NO_THREADED_BUILDS, the Rust peers without their parallel features.
+# compiled with NO_THREADED_BUILDS, the Rust peers without their parallel features, Embree's
+# device with threads=1.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 export PATH="${CARGO_HOME:-$HOME/.cargo}/bin:$PATH"
@@ -43,6 +44,23 @@ export CXXFLAGS="${CXXFLAGS:-} -DNO_THREADED_BUILDS"
 mkdir -p bench
 rm -f bench/wasm.json bench/parallel.json
 
+# Intel Embree 3 is a peer behind the bench crate's `embree` feature, which links the system's
+# libembree3 (Debian's libembree-dev): installed here when we are root, else left out.
+# (grep reads all of ldconfig's list: `grep -q` would stop early, and under pipefail the
+# broken pipe of ldconfig would count as "missing".)
+have_embree() { { ldconfig -p || /sbin/ldconfig -p; } 2>/dev/null | grep 'libembree3\.so ' >/dev/null; }
+if ! have_embree && [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null; then
+  echo "compare.sh: installing libembree-dev (Intel Embree 3) for the Embree row"
+  apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq libembree-dev || true
+fi
+features=()
+if have_embree; then
+  features=(--features embree)
+else
+  echo "compare.sh: libembree3 is missing and could not be installed (needs root and apt-get):"
+  echo "compare.sh: running without the Embree row; install libembree-dev to add it"
+fi
+
 # --- 1. WebAssembly ----------------------------------------------------------------------
 # The wasm32 target and the wasm-bindgen CLI of the version in Cargo.lock (shared with the
 # web build).
@@ -64,10 +82,10 @@ else
 fi
 
 # --- 2. Native ---------------------------------------------------------------------------
-cargo bench -p bvhlab-bench --bench peers --no-run
-"${pin[@]}" cargo bench -p bvhlab-bench --bench peers -- $quick
+cargo bench -p bvhlab-bench --bench peers "${features[@]}" --no-run
+"${pin[@]}" cargo bench -p bvhlab-bench --bench peers "${features[@]}" -- $quick
 # Both cores: not pinned.
-cargo bench -p bvhlab-bench --bench peers -- $quick --parallel
+cargo bench -p bvhlab-bench --bench peers "${features[@]}" -- $quick --parallel
 
 if [ -n "$native" ]; then
   native_scenes="${BVHLAB_BENCH_SCENES:-bunny,dragon,ogre}"
@@ -75,8 +93,8 @@ if [ -n "$native" ]; then
   # A second build of everything with the host's instruction set, in its own target folder,
   # on the real meshes.
   RUSTFLAGS="-C target-cpu=native" CARGO_TARGET_DIR="$target/native" \
-    cargo bench -p bvhlab-bench --bench peers --no-run
+    cargo bench -p bvhlab-bench --bench peers "${features[@]}" --no-run
   RUSTFLAGS="-C target-cpu=native" CARGO_TARGET_DIR="$target/native" \
-    BVHLAB_BENCH_SCENES="$native_scenes" \
-    BVHLAB_BENCH_OUT="$PWD/bench/native" "${pin[@]}" cargo bench -p bvhlab-bench --bench peers -- $quick
+    BVHLAB_BENCH_SCENES="$native_scenes" BVHLAB_BENCH_OUT="$PWD/bench/native" "${pin[@]}" \
+    cargo bench -p bvhlab-bench --bench peers "${features[@]}" -- $quick
 fi

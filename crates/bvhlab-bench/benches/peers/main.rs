@@ -22,6 +22,8 @@
 mod lib_bvh;
 mod lib_bvhlab;
 mod lib_bvhlab4;
+#[cfg(feature = "embree")]
+mod lib_embree;
 mod lib_obvhs;
 mod lib_parry;
 mod lib_tinybvh;
@@ -155,6 +157,8 @@ fn main() {
         run::<lib_tinybvh::TinyBvh>(&scene, repeats, r, &mut rows);
         #[cfg(target_feature = "avx2")]
         run::<lib_tinybvh::TinyBvh8>(&scene, repeats, r, &mut rows);
+        #[cfg(feature = "embree")]
+        run::<lib_embree::Embree>(&scene, repeats, r, &mut rows);
         run_result.scenes.push(SceneResult {
             name: id.name(),
             triangles: scene.tris.len(),
