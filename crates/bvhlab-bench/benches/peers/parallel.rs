@@ -77,12 +77,35 @@ fn both<A: PartialEq + Send>(
     }
 }
 
+/// `Bvh4::build` in one thread against `Bvh4::build_parallel` on every core (triangles per
+/// second), and whether they made the same tree.
+fn build_row(
+    tris: &[Triangle3],
+    repeats: Repeats,
+    one: &rayon::ThreadPool,
+    all: &rayon::ThreadPool,
+) -> Row {
+    let (mut serial, mut parallel) = (None, None);
+    let serial_secs = median_secs(repeats.count, || {
+        serial = Some(one.install(|| Bvh4::build(tris)));
+    });
+    let parallel_secs = median_secs(repeats.count, || {
+        parallel = Some(all.install(|| Bvh4::build_parallel(tris)));
+    });
+    Row {
+        what: "build (Bvh4::build, Bvh4::build_parallel)".into(),
+        one_thread: tris.len() as f64 / serial_secs,
+        all_cores: tris.len() as f64 / parallel_secs,
+        same_answers: serial.is_some() && serial == parallel,
+    }
+}
+
 /// Every row for one scene.
 pub fn measure(tris: &[Triangle3], work: &Workload, repeats: Repeats) -> Vec<Row> {
     let cores = std::thread::available_parallelism().map_or(1, std::num::NonZero::get);
     let (one, all) = (pool(1), pool(cores));
+    let mut rows = vec![build_row(tris, repeats, &one, &all)];
     let tree = Bvh4::build(tris);
-    let mut rows = Vec::new();
     for (kind, bench_rays) in &work.rays {
         let (rays, limit) = batch_rays(bench_rays);
         let first = |hits: Vec<Option<Hit>>| hits.into_iter().map(|h| h.map(|h| (h.prim, h.t)));
