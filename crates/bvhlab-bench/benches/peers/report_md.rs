@@ -346,7 +346,7 @@ fn wasm_ratio_table(md: &mut String, wasm: &Value, kinds: &[String]) {
 fn parallel_section(md: &mut String, all: &Value) {
     let par = &all["parallel"];
     let Some(scenes) = par["scenes"].as_array() else {
-        md.push_str("\n## Both cores\n\nNot measured in this run (`compare.sh` measures it, unpinned, after the single-threaded runs).\n");
+        md.push_str("\n## Both cores\n\nNot in this run: `compare.sh` measures it with the default build, unpinned, after the single-threaded run, into `bench/RESULTS.md`.\n");
         return;
     };
     let _ = writeln!(
