@@ -3,6 +3,7 @@
 //! inputs of the comparison with peer libraries (issue 7), natively and in WebAssembly.
 
 pub mod rng;
+pub mod scenes;
 pub mod workload;
 
 use std::path::PathBuf;
