@@ -62,8 +62,15 @@ async function keyboardOnly(browser, summary) {
   // the widgets in order (the panel's tabs, the Lessons header, ...); the sixth press is on
   // the first lesson's button (a visible focus ring: lesson-keyboard-focus.png), and Enter
   // presses it.
+  // egui moves the focus once per frame whatever the number of Tab presses it sees in that
+  // frame, so each press waits a few frames (a slow software-rendered page draws one every
+  // 150-200 ms).
   await page.focus('canvas');
-  for (let i = 0; i < 6; i++) await page.keyboard.press('Tab');
+  const frameWait = Math.min(1000, Math.max(100, 3 * (r.frame_ms ?? 30)));
+  for (let i = 0; i < 6; i++) {
+    await page.keyboard.press('Tab');
+    await page.waitForTimeout(frameWait);
+  }
   await page.waitForTimeout(300);
   await page.screenshot({ path: join(outDir, 'lesson-keyboard-focus.png') });
   r = await press(page, 'Enter', (r) => r.lesson?.lesson === 'queries' && r.playback?.[0]?.steps > 0,
