@@ -9,6 +9,41 @@ use crate::structure::bvh::MAX_DEPTH;
 use crate::volume::BoundingVolume;
 use crate::{Primitive, Vector};
 
+/// Every lane of `node` is either used, with no NaN among its planes, or exactly the empty
+/// lane. The walks' slab test skips a NaN plane (a ray lying in it), so a lane that
+/// [`Bvh4Node::is_used`] calls unused but whose planes are NaN would still be entered, and its
+/// child followed, by a walk this check never made: a loaded file could send the walks round
+/// a loop for ever.
+fn check_lanes_are_used_or_empty<V: Vector>(
+    node: &super::layout::Bvh4Node,
+    i: usize,
+) -> Result<(), ValidationError> {
+    let empty = super::layout::Bvh4Node::EMPTY;
+    for lane in 0..WIDTH {
+        if node.is_used(lane) {
+            let nan =
+                (0..V::DIM).any(|axis| (0..2).any(|side| node.planes[side][axis][lane].is_nan()));
+            if nan {
+                return fail(format!("wide node {i} lane {lane} has a NaN plane"));
+            }
+        } else {
+            let same = |a: f32, b: f32| a.to_bits() == b.to_bits();
+            let planes_empty = (0..3).all(|axis| {
+                (0..2).all(|side| {
+                    same(
+                        node.planes[side][axis][lane],
+                        empty.planes[side][axis][lane],
+                    )
+                })
+            });
+            if !planes_empty || node.child[lane] != 0 || node.count[lane] != 0 {
+                return fail(format!("wide node {i} lane {lane} is unused but not empty"));
+            }
+        }
+    }
+    Ok(())
+}
+
 fn fail<T>(message: String) -> Result<T, ValidationError> {
     Err(ValidationError::new(message))
 }
@@ -68,6 +103,7 @@ impl<P: Primitive> Bvh4<P> {
             }
             depth = level.max(depth);
             let node = &self.nodes[i];
+            check_lanes_are_used_or_empty::<P::Point>(node, i)?;
             for lane in (0..WIDTH).filter(|&lane| node.is_used(lane)) {
                 let lane_box = node.lane_box::<P::Point>(lane);
                 let inside = |b: &crate::Aabb<P::Point>| {
