@@ -74,10 +74,16 @@ export class RapierScene {
  * the time of impact along a unit direction is the distance, `-1` a miss.
  */
 export function rapierFirstHits(collider, rays) {
+	return eachRay(rays, new Float32Array(rays.length / 7), (ray, tMax) => collider.castRay(ray, tMax, false));
+}
+
+/**
+ * `out[i] = ask(ray i, its t_max)` for every ray (7 floats each: origin, unit direction,
+ * t_max), through one reused `RAPIER.Ray` as a rapier user would write the loop.
+ */
+function eachRay(rays, out, ask) {
 	const ray = new RAPIER.Ray({ x: 0, y: 0, z: 0 }, { x: 0, y: 0, z: 1 });
-	const n = rays.length / 7;
-	const out = new Float32Array(n);
-	for (let i = 0; i < n; i++) {
+	for (let i = 0; i < out.length; i++) {
 		const k = 7 * i;
 		ray.origin.x = rays[k];
 		ray.origin.y = rays[k + 1];
@@ -85,7 +91,7 @@ export function rapierFirstHits(collider, rays) {
 		ray.dir.x = rays[k + 3];
 		ray.dir.y = rays[k + 4];
 		ray.dir.z = rays[k + 5];
-		out[i] = collider.castRay(ray, rays[k + 6], false);
+		out[i] = ask(ray, rays[k + 6]);
 	}
 	return out;
 }
@@ -94,20 +100,7 @@ export function rapierFirstHits(collider, rays) {
  * `Collider.intersectsRay` for every ray (occlusion: blocked within t_max or not), 1 or 0.
  */
 export function rapierOccluded(collider, rays) {
-	const ray = new RAPIER.Ray({ x: 0, y: 0, z: 0 }, { x: 0, y: 0, z: 1 });
-	const n = rays.length / 7;
-	const out = new Uint8Array(n);
-	for (let i = 0; i < n; i++) {
-		const k = 7 * i;
-		ray.origin.x = rays[k];
-		ray.origin.y = rays[k + 1];
-		ray.origin.z = rays[k + 2];
-		ray.dir.x = rays[k + 3];
-		ray.dir.y = rays[k + 4];
-		ray.dir.z = rays[k + 5];
-		out[i] = collider.intersectsRay(ray, rays[k + 6]) ? 1 : 0;
-	}
-	return out;
+	return eachRay(rays, new Uint8Array(rays.length / 7), (ray, tMax) => (collider.intersectsRay(ray, tMax) ? 1 : 0));
 }
 
 /**

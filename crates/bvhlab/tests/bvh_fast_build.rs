@@ -9,33 +9,11 @@
 mod bvh_common;
 
 use bvh_common::scenes::{degenerate, random};
-use bvh_common::{rng, shared_mesh};
+use bvh_common::{rng, shared_mesh, tree_bits};
 use bvhlab::glam::{Vec2, Vec3};
 use bvhlab::prelude::*;
 use bvhlab::structure::bvh::{AabbTree, Bvh, Bvh4, BvhBuild, BvhOptions, SplitMethod};
 use bvhlab::{Aabb, Segment2};
-
-/// Everything of a box tree, as bits: `==` on floats would take `-0` for `0`.
-fn tree_bits<P: Primitive>(tree: &AabbTree<P>) -> (Vec<Vec<u32>>, Vec<u32>) {
-    let nodes = tree
-        .nodes()
-        .iter()
-        .map(|node| {
-            let bits = |v: P::Point| (0..P::Point::DIM).map(move |i| v.coord(i).to_bits());
-            bits(node.volume.min)
-                .chain(bits(node.volume.max))
-                .chain([node.start, node.count])
-                .collect()
-        })
-        .collect();
-    let leaf_order = (0..tree.nodes().len())
-        .flat_map(|i| {
-            tree.leaf_primitives(bvhlab::structure::NodeId(i as u32))
-                .to_vec()
-        })
-        .collect();
-    (nodes, leaf_order)
-}
 
 /// Builds `prims` with `options` three ways (one go, in slices, observed) and asserts one
 /// tree.

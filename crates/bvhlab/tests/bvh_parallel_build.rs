@@ -14,33 +14,16 @@
 mod bvh_common;
 
 use bvh_common::scenes::{degenerate, random};
-use bvh_common::{TestPrim, rng, shared_mesh};
+use bvh_common::{TestPrim, TreeBits, rng, shared_mesh, tree_bits};
 use bvhlab::Segment2;
 use bvhlab::glam::{Vec2, Vec3};
 use bvhlab::prelude::*;
 use bvhlab::structure::bvh::{AabbTree, Bvh4, BvhOptions, SplitMethod};
 use rand::RngExt;
 
-/// Everything of a box tree, as bits: `==` on floats would take `-0` for `0`.
-fn tree_bits<P: Primitive>(tree: &AabbTree<P>) -> (Vec<Vec<u32>>, Vec<u32>, Option<u32>) {
-    let nodes = tree
-        .nodes()
-        .iter()
-        .map(|node| {
-            let bits = |v: P::Point| (0..P::Point::DIM).map(move |i| v.coord(i).to_bits());
-            bits(node.volume.min)
-                .chain(bits(node.volume.max))
-                .chain([node.start, node.count])
-                .collect()
-        })
-        .collect();
-    let leaf_order = (0..tree.nodes().len())
-        .flat_map(|i| {
-            tree.leaf_primitives(bvhlab::structure::NodeId(i as u32))
-                .to_vec()
-        })
-        .collect();
-    (nodes, leaf_order, tree.build_sah_cost().map(f32::to_bits))
+/// Everything of a box tree, as bits (`tree_bits`), and its recorded SAH cost.
+fn tree_and_cost_bits<P: Primitive>(tree: &AabbTree<P>) -> (TreeBits, Option<u32>) {
+    (tree_bits(tree), tree.build_sah_cost().map(f32::to_bits))
 }
 
 /// Everything of a wide tree, as bits.
@@ -66,8 +49,8 @@ fn assert_same_tree<P: Primitive>(name: &str, prims: &[P], options: &BvhOptions)
     let serial = AabbTree::<P>::build_with(prims, options);
     let parallel = AabbTree::<P>::build_with_parallel(prims, options);
     assert_eq!(
-        tree_bits(&serial),
-        tree_bits(&parallel),
+        tree_and_cost_bits(&serial),
+        tree_and_cost_bits(&parallel),
         "{name} ({} primitives): serial and parallel, {options:?}",
         prims.len()
     );

@@ -39,7 +39,7 @@ use bvhlab::glam::Vec3;
 use bvhlab_bench::workload::BenchRay;
 use embree::sys;
 
-use crate::library::{Library, TreeFacts};
+use crate::library::{Library, TreeFacts, indexed_mesh};
 
 /// Embree's triangle mesh.
 pub struct Embree;
@@ -133,25 +133,6 @@ impl Drop for EmbreeScene<'_> {
             sys::rtcReleaseScene(self.handle);
         }
     }
-}
-
-/// Merges equal corners into one vertex list with an index triple per triangle.
-fn indexed(tris: &[Triangle3]) -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
-    let mut index = std::collections::HashMap::new();
-    let mut vertices = Vec::new();
-    let mut corner = |p: Vec3| {
-        *index
-            .entry(p.to_array().map(f32::to_bits))
-            .or_insert_with(|| {
-                vertices.push(p.to_array());
-                vertices.len() as u32 - 1
-            })
-    };
-    let indices = tris
-        .iter()
-        .map(|t| [corner(t.a), corner(t.b), corner(t.c)])
-        .collect();
-    (vertices, indices)
 }
 
 /// Builds and commits a scene of one triangle mesh, copying the mesh into Embree's buffers.
@@ -262,10 +243,10 @@ impl Library for Embree {
     type Ray = sys::RTCRayHit;
 
     fn input(tris: &[Triangle3]) -> EmbreeInput {
-        let (vertices, indices) = indexed(tris);
+        let (vertices, indices) = indexed_mesh(tris);
         EmbreeInput {
             device: Device::new(),
-            vertices,
+            vertices: vertices.iter().map(Vec3::to_array).collect(),
             indices,
             tris: tris.to_vec(),
         }

@@ -3,8 +3,6 @@
 //! own glam (0.33, through glamx), so points are converted by coordinates. The mesh gets an
 //! indexed vertex list (equal corners merged before timing), as a parry user would pass it.
 
-use std::collections::HashMap;
-
 use bvhlab::Triangle3;
 use bvhlab::glam::Vec3;
 use bvhlab_bench::workload::BenchRay;
@@ -13,7 +11,7 @@ use parry3d::partitioning::TraversalAction;
 use parry3d::query::{PointQuery, Ray, RayCast};
 use parry3d::shape::TriMesh;
 
-use crate::library::{Library, SahSum, TreeFacts};
+use crate::library::{Library, SahSum, TreeFacts, indexed_mesh};
 
 /// parry3d's `TriMesh`.
 pub struct Parry;
@@ -31,21 +29,8 @@ impl Library for Parry {
     type Ray = (Ray, f32);
 
     fn input(tris: &[Triangle3]) -> Self::Input {
-        let mut index: HashMap<[u32; 3], u32> = HashMap::new();
-        let mut vertices = Vec::new();
-        let mut corner = |p: Vec3| {
-            *index
-                .entry(p.to_array().map(f32::to_bits))
-                .or_insert_with(|| {
-                    vertices.push(v(p));
-                    vertices.len() as u32 - 1
-                })
-        };
-        let indices = tris
-            .iter()
-            .map(|t| [corner(t.a), corner(t.b), corner(t.c)])
-            .collect();
-        (vertices, indices)
+        let (vertices, indices) = indexed_mesh(tris);
+        (vertices.into_iter().map(v).collect(), indices)
     }
 
     fn build((vertices, indices): &Self::Input) -> TriMesh {

@@ -97,3 +97,24 @@ impl SahSum {
         (cost, self.nodes)
     }
 }
+
+/// The triangles as one vertex list with equal corners merged (compared bit for bit) and an
+/// index triple per triangle: the input of the peers that take an indexed mesh (parry3d,
+/// Embree).
+pub fn indexed_mesh(tris: &[Triangle3]) -> (Vec<Vec3>, Vec<[u32; 3]>) {
+    let mut index = std::collections::HashMap::new();
+    let mut vertices = Vec::new();
+    let mut corner = |p: Vec3| {
+        *index
+            .entry(p.to_array().map(f32::to_bits))
+            .or_insert_with(|| {
+                vertices.push(p);
+                vertices.len() as u32 - 1
+            })
+    };
+    let indices = tris
+        .iter()
+        .map(|t| [corner(t.a), corner(t.b), corner(t.c)])
+        .collect();
+    (vertices, indices)
+}

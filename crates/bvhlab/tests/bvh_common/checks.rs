@@ -307,3 +307,28 @@ where
     };
     assert_eq!(reversed, want, "{name}: collision is not symmetric");
 }
+
+/// A box tree's nodes (corners, start, count) and leaf order, as bits ([`tree_bits`]).
+pub type TreeBits = (Vec<Vec<u32>>, Vec<u32>);
+
+/// Everything of a box tree, as bits: `==` on floats would take `-0` for `0`.
+pub fn tree_bits<P: Primitive>(tree: &bvhlab::structure::bvh::AabbTree<P>) -> TreeBits {
+    let nodes = tree
+        .nodes()
+        .iter()
+        .map(|node| {
+            let bits = |v: P::Point| (0..P::Point::DIM).map(move |i| v.coord(i).to_bits());
+            bits(node.volume.min)
+                .chain(bits(node.volume.max))
+                .chain([node.start, node.count])
+                .collect()
+        })
+        .collect();
+    let leaf_order = (0..tree.nodes().len())
+        .flat_map(|i| {
+            tree.leaf_primitives(bvhlab::structure::NodeId(i as u32))
+                .to_vec()
+        })
+        .collect();
+    (nodes, leaf_order)
+}

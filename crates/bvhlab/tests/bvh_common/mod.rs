@@ -11,7 +11,8 @@ pub mod rays;
 pub mod scenes;
 
 pub use checks::{
-    Budget, Checked, assert_counts, check_collide, check_ray, check_scene, check_tree,
+    Budget, Checked, TreeBits, assert_counts, check_collide, check_ray, check_scene, check_tree,
+    tree_bits,
 };
 pub use rays::{plausible_hit, points_for, rays_for};
 

@@ -139,16 +139,7 @@ where
     B: NodeVolume<Point = P::Point>,
     P: Primitive,
 {
-    let parts = build_sah_box_parts(prims, options);
-    Bvh {
-        prims: prims.to_vec(),
-        nodes: parts.nodes,
-        leaf_prims: parts.leaf_prims,
-        leaf_ids: parts.leaf_ids,
-        options: *options,
-        build_sah_cost: None,
-    }
-    .with_build_cost()
+    build_sah_box_parts(prims, options).into_bvh(prims.to_vec(), options)
 }
 
 /// What a tree is made of besides its input and options (a [`Bvh4`](super::super::Bvh4)
@@ -157,6 +148,25 @@ pub(in crate::structure::bvh) struct TreeParts<B, P> {
     pub nodes: Vec<BvhNode<B>>,
     pub leaf_prims: Vec<P>,
     pub leaf_ids: Vec<u32>,
+}
+
+impl<B: NodeVolume, P: Primitive<Point = B::Point>> TreeParts<B, P> {
+    /// The tree of these parts over `prims` (the input, copied), with its SAH cost.
+    pub(in crate::structure::bvh) fn into_bvh(
+        self,
+        prims: Vec<P>,
+        options: &BvhOptions,
+    ) -> Bvh<B, P> {
+        Bvh {
+            prims,
+            nodes: self.nodes,
+            leaf_prims: self.leaf_prims,
+            leaf_ids: self.leaf_ids,
+            options: *options,
+            build_sah_cost: None,
+        }
+        .with_build_cost()
+    }
 }
 
 /// [`build_sah_boxes`]'s nodes and leaf order.

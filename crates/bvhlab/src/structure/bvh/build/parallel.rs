@@ -52,16 +52,8 @@ where
     B: NodeVolume<Point = P::Point>,
     P: Primitive,
 {
-    let parts = build_sah_box_parts_parallel(prims, options);
-    Bvh {
-        prims: prims.par_iter().copied().collect(),
-        nodes: parts.nodes,
-        leaf_prims: parts.leaf_prims,
-        leaf_ids: parts.leaf_ids,
-        options: *options,
-        build_sah_cost: None,
-    }
-    .with_build_cost()
+    build_sah_box_parts_parallel(prims, options)
+        .into_bvh(prims.par_iter().copied().collect(), options)
 }
 
 /// [`build_sah_box_parts`](super::build_sah_box_parts) on every core: the same parts.
