@@ -106,12 +106,17 @@ impl<P: Primitive> Bvh4<P> {
                 bound_lanes::<2>(node, &coords, reach_sq)
             };
             // Leaf lanes first, in lane order (the order changes only the work, not the
-            // answer).
+            // answer); one that a better best from the lanes before it has put out of
+            // reach is skipped (2-5% on the peer workload's points, bunny and dragon;
+            // taking the leaf lanes nearest first instead was no faster).
             let leaves = mask & leaf_lanes(node);
             let mut bits = leaves;
             while bits != 0 {
                 let lane = bits.trailing_zeros() as usize;
                 bits &= bits - 1;
+                if squared[lane] > reach_sq {
+                    continue;
+                }
                 let start = node.child[lane] as usize;
                 let range = start..start + node.count[lane] as usize;
                 if best.test_leaf(

@@ -134,12 +134,25 @@ impl<P: Primitive> Bvh4<P> {
     fn first_hit_walk<const CAP: usize>(&self, ray: &Ray<P::Point>, t_max: f32) -> Option<Hit> {
         let prepared = PreparedRay::new(ray);
         let lanes = LaneRay::new(&prepared);
+        // The root's boxes first: a ray that enters none of them (most rays of a camera
+        // that sees the mesh small) leaves before the stack is set up and zeroed. On the
+        // overview rays of the bunny and the dragon this made the walk 1.30-1.32x as fast,
+        // and the other ray kinds no slower (issue 19, old and new walk in one run).
+        let root = &self.nodes[0];
+        let (t_enter, mask) = if P::Point::DIM == 3 {
+            enter_lanes::<3>(root, &lanes, t_max * GROW)
+        } else {
+            enter_lanes::<2>(root, &lanes, t_max * GROW)
+        };
+        if mask == 0 {
+            return None;
+        }
         let mut best = HitTracker::new(t_max);
         // `best.limit()`, kept in a local so that the hot loop reads a register.
         let mut limit = t_max;
         let mut stack = [Lane::ROOT; CAP];
         let mut len = 0;
-        let mut current = Lane::ROOT;
+        let mut current = visit_nearest(root, mask, &t_enter, &mut stack, &mut len);
         // The leaf-order slot of the best hit's primitive, for its coordinates.
         let mut best_slot = 0;
         loop {
