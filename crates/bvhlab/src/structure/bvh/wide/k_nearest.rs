@@ -14,8 +14,7 @@
 
 use super::layout::Bvh4;
 use super::nearest::{bound_lanes, leaf_lanes, within};
-use super::stack::{Lane, MIDDLE_DEPTH, SHALLOW_DEPTH, capacity, visit_nearest};
-use crate::structure::bvh::MAX_DEPTH;
+use super::stack::{LaneStack, visit_nearest};
 use crate::structure::bvh::volume::{GROW, query_slack};
 use crate::structure::bvh::walk::fast_nearest::reach_squared;
 use crate::structure::{Nearest, NearestSet};
@@ -31,21 +30,11 @@ impl<P: Primitive> Bvh4<P> {
         if self.nodes.is_empty() || k == 0 || !point.is_finite() {
             return Vec::new();
         }
-        if self.depth <= SHALLOW_DEPTH {
-            self.k_nearest_walk::<{ capacity(SHALLOW_DEPTH) }>(point, k)
-        } else if self.depth <= MIDDLE_DEPTH {
-            self.k_nearest_walk::<{ capacity(MIDDLE_DEPTH) }>(point, k)
-        } else {
-            self.k_nearest_walk::<{ capacity(MAX_DEPTH + 1) }>(point, k)
-        }
+        self.k_nearest_walk(point, k)
     }
 
-    /// The walk, with a stack of `CAP` entries (enough for the tree's depth).
-    fn k_nearest_walk<const CAP: usize>(
-        &self,
-        point: P::Point,
-        k: usize,
-    ) -> Vec<Nearest<P::Point>> {
+    /// The walk.
+    fn k_nearest_walk(&self, point: P::Point, k: usize) -> Vec<Nearest<P::Point>> {
         let slack = query_slack(point);
         let mut coords = [0.0; 3];
         for (axis, c) in coords.iter_mut().enumerate().take(P::Point::DIM) {
@@ -55,8 +44,7 @@ impl<P: Primitive> Bvh4<P> {
         // The square of what a box's bound may be and still hold something as near as the
         // k-th best (infinite while fewer than k are known).
         let mut reach_sq = f32::INFINITY;
-        let mut stack = [Lane::ROOT; CAP];
-        let mut len = 0;
+        let mut stack = LaneStack::new();
         let mut current = 0u32;
         loop {
             let node = &self.nodes[current as usize];
@@ -81,16 +69,14 @@ impl<P: Primitive> Bvh4<P> {
             }
             let inner = (mask & !leaves) & within(&squared, reach_sq);
             if inner != 0 {
-                current = visit_nearest(node, inner, &squared, &mut stack, &mut len).child;
+                current = visit_nearest(node, inner, &squared, &mut stack).child;
                 continue;
             }
             // Pop the next waiting child the k-th best has not moved in front of.
             loop {
-                if len == 0 {
+                let Some(waiting) = stack.pop() else {
                     return best.into_vec();
-                }
-                len -= 1;
-                let waiting = stack[len];
+                };
                 #[expect(clippy::neg_cmp_op_on_partial_ord, reason = "NaN must not prune")]
                 if !(waiting.key > reach_sq) {
                     current = waiting.child;

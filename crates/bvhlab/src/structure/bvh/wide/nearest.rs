@@ -23,9 +23,8 @@
 //! [`distance_bound_squared`]: crate::structure::bvh::NodeVolume::distance_bound_squared
 
 use super::layout::{Bvh4, Bvh4Node, WIDTH};
-use super::stack::{Lane, MIDDLE_DEPTH, SHALLOW_DEPTH, capacity, visit_nearest};
+use super::stack::{LaneStack, visit_nearest};
 use crate::structure::Nearest;
-use crate::structure::bvh::MAX_DEPTH;
 use crate::structure::bvh::volume::{GROW, query_slack};
 use crate::structure::bvh::walk::fast_nearest::{Best, reach_squared};
 use crate::{Primitive, Vector};
@@ -74,17 +73,11 @@ impl<P: Primitive> Bvh4<P> {
         if self.nodes.is_empty() || !point.is_finite() {
             return None;
         }
-        if self.depth <= SHALLOW_DEPTH {
-            self.closest_walk::<{ capacity(SHALLOW_DEPTH) }>(point)
-        } else if self.depth <= MIDDLE_DEPTH {
-            self.closest_walk::<{ capacity(MIDDLE_DEPTH) }>(point)
-        } else {
-            self.closest_walk::<{ capacity(MAX_DEPTH + 1) }>(point)
-        }
+        self.closest_walk(point)
     }
 
-    /// The walk, with a stack of `CAP` entries (enough for the tree's depth).
-    fn closest_walk<const CAP: usize>(&self, point: P::Point) -> Option<Nearest<P::Point>> {
+    /// The walk.
+    fn closest_walk(&self, point: P::Point) -> Option<Nearest<P::Point>> {
         let slack = query_slack(point);
         let mut coords = [0.0; 3];
         for (axis, c) in coords.iter_mut().enumerate().take(P::Point::DIM) {
@@ -95,8 +88,7 @@ impl<P: Primitive> Bvh4<P> {
         // best, with room for rounding (`reach_squared`).
         let mut reach_sq = f32::INFINITY;
         // Inner nodes waiting, with their squared bounds.
-        let mut stack = [Lane::ROOT; CAP];
-        let mut len = 0;
+        let mut stack = LaneStack::new();
         let mut current = 0u32;
         loop {
             let node = &self.nodes[current as usize];
@@ -130,16 +122,14 @@ impl<P: Primitive> Bvh4<P> {
             // The inner lanes still in reach of a best the leaves may have improved.
             let inner = (mask & !leaves) & within(&squared, reach_sq);
             if inner != 0 {
-                current = visit_nearest(node, inner, &squared, &mut stack, &mut len).child;
+                current = visit_nearest(node, inner, &squared, &mut stack).child;
                 continue;
             }
             // Pop the next waiting child the best has not moved in front of.
             loop {
-                if len == 0 {
+                let Some(waiting) = stack.pop() else {
                     return best.into_nearest();
-                }
-                len -= 1;
-                let waiting = stack[len];
+                };
                 #[expect(clippy::neg_cmp_op_on_partial_ord, reason = "NaN must not prune")]
                 if !(waiting.key > reach_sq) {
                     current = waiting.child;

@@ -26,11 +26,10 @@
 //!
 //! [`NodeVolume::ray_entry`]: crate::structure::bvh::NodeVolume::ray_entry
 
-use crate::structure::bvh::MAX_DEPTH;
 use glam::Vec4;
 
 use super::layout::{Bvh4, Bvh4Node, WIDTH};
-use super::stack::{Lane, MIDDLE_DEPTH, SHALLOW_DEPTH, capacity, visit_nearest};
+use super::stack::{LaneStack, visit_nearest};
 use crate::structure::bvh::volume::{GROW, PreparedRay};
 use crate::structure::{Hit, HitTracker};
 use crate::{Primitive, Ray, Vector};
@@ -121,21 +120,15 @@ impl<P: Primitive> Bvh4<P> {
         if self.nodes.is_empty() || t_max.is_nan() {
             return None;
         }
-        if self.depth <= SHALLOW_DEPTH {
-            self.first_hit_walk::<{ capacity(SHALLOW_DEPTH) }>(ray, t_max)
-        } else if self.depth <= MIDDLE_DEPTH {
-            self.first_hit_walk::<{ capacity(MIDDLE_DEPTH) }>(ray, t_max)
-        } else {
-            self.first_hit_walk::<{ capacity(MAX_DEPTH + 1) }>(ray, t_max)
-        }
+        self.first_hit_walk(ray, t_max)
     }
 
-    /// The walk, with a stack of `CAP` entries (enough for the tree's depth).
-    fn first_hit_walk<const CAP: usize>(&self, ray: &Ray<P::Point>, t_max: f32) -> Option<Hit> {
+    /// The walk.
+    fn first_hit_walk(&self, ray: &Ray<P::Point>, t_max: f32) -> Option<Hit> {
         let prepared = PreparedRay::new(ray);
         let lanes = LaneRay::new(&prepared);
         // The root's boxes first: a ray that enters none of them (most rays of a camera
-        // that sees the mesh small) leaves before the stack is set up and zeroed. On the
+        // that sees the mesh small) leaves before the stack is set up. On the
         // overview rays of the bunny and the dragon this made the walk 1.30-1.32x as fast,
         // and the other ray kinds no slower (issue 19, old and new walk in one run).
         let root = &self.nodes[0];
@@ -150,9 +143,8 @@ impl<P: Primitive> Bvh4<P> {
         let mut best = HitTracker::new(t_max);
         // `best.limit()`, kept in a local so that the hot loop reads a register.
         let mut limit = t_max;
-        let mut stack = [Lane::ROOT; CAP];
-        let mut len = 0;
-        let mut current = visit_nearest(root, mask, &t_enter, &mut stack, &mut len);
+        let mut stack = LaneStack::new();
+        let mut current = visit_nearest(root, mask, &t_enter, &mut stack);
         // The leaf-order slot of the best hit's primitive, for its coordinates.
         let mut best_slot = 0;
         loop {
@@ -173,19 +165,17 @@ impl<P: Primitive> Bvh4<P> {
                     enter_lanes::<2>(node, &lanes, limit * GROW)
                 };
                 if mask != 0 {
-                    current = visit_nearest(node, mask, &t_enter, &mut stack, &mut len);
+                    current = visit_nearest(node, mask, &t_enter, &mut stack);
                     continue;
                 }
             }
             // Pop the next waiting child the best hit has not moved in front of.
             loop {
-                if len == 0 {
+                let Some(waiting) = stack.pop() else {
                     return best
                         .best()
                         .map(|h| Hit::on(h.prim, h.t, &self.leaf_prims[best_slot], ray));
-                }
-                len -= 1;
-                let waiting = stack[len];
+                };
                 if waiting.key <= limit * GROW {
                     current = waiting;
                     break;
