@@ -17,7 +17,7 @@
 //! arrays, deeper trees get one for [`MAX_DEPTH`]): a coherent ray takes only about 250
 //! cycles, and zeroing the longest array cost the 2M-triangle sphere's rays 5-8%. With four-
 //! byte entries the short array zeroes fast, and an `ArrayVec` made the any-hit walk
-//! 0.88-0.94x as fast (pushing every inner lane, or visiting the first at once).
+//! 0.88-0.97x as fast (pushing every inner lane, or visiting the first at once).
 //!
 //! [`ArrayVec`]: arrayvec::ArrayVec
 
