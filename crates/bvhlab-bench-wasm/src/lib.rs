@@ -105,38 +105,19 @@ impl WasmBench {
         self.tree = Some(Bvh4::build(&self.tris));
     }
 
-    /// The first-hit distance of every ray of kind `kind`, `-1` for a miss (or before
+    /// The first-hit distance of every ray of kind `kind`, `-1` for a miss (empty before
     /// `build`).
     pub fn first_hits(&self, kind: usize) -> Vec<f32> {
-        let Some(tree) = &self.tree else {
-            return Vec::new();
-        };
-        self.prepared.get(kind).map_or_else(Vec::new, |rays| {
-            rays.iter()
-                .map(|(ray, t_max)| {
-                    ray.as_ref()
-                        .and_then(|ray| tree.ray_first_hit(ray, *t_max))
-                        .map_or(-1.0, |hit| hit.t)
-                })
-                .collect()
+        self.per_ray(kind, -1.0, |tree, ray, t_max| {
+            tree.ray_first_hit(ray, t_max).map_or(-1.0, |hit| hit.t)
         })
     }
 
     /// Whether each ray of kind `kind` is blocked within its `t_max` (1) or not (0), by the
     /// 4-wide tree's any-hit walk (occlusion; empty before `build`).
     pub fn any_hits(&self, kind: usize) -> Vec<u8> {
-        let Some(tree) = &self.tree else {
-            return Vec::new();
-        };
-        self.prepared.get(kind).map_or_else(Vec::new, |rays| {
-            rays.iter()
-                .map(|(ray, t_max)| {
-                    u8::from(
-                        ray.as_ref()
-                            .is_some_and(|ray| tree.ray_any_hit(ray, *t_max).is_some()),
-                    )
-                })
-                .collect()
+        self.per_ray(kind, 0, |tree, ray, t_max| {
+            u8::from(tree.ray_any_hit(ray, t_max).is_some())
         })
     }
 
@@ -154,6 +135,25 @@ impl WasmBench {
 }
 
 impl WasmBench {
+    /// `answer` for every ray of kind `kind` (with its `t_max`), `refused` for a ray that
+    /// `Ray3::new` refused; empty before `build` or for an unknown kind.
+    fn per_ray<T: Copy>(
+        &self,
+        kind: usize,
+        refused: T,
+        answer: impl Fn(&Bvh4<Triangle3>, &Ray3, f32) -> T,
+    ) -> Vec<T> {
+        let (Some(tree), Some(rays)) = (&self.tree, self.prepared.get(kind)) else {
+            return Vec::new();
+        };
+        rays.iter()
+            .map(|(ray, t_max)| {
+                ray.as_ref()
+                    .map_or(refused, |ray| answer(tree, ray, *t_max))
+            })
+            .collect()
+    }
+
     fn kind_rays(&self, kind: usize) -> &[bvhlab_bench::workload::BenchRay] {
         RayKind::ALL
             .get(kind)

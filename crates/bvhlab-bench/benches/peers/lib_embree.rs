@@ -140,40 +140,26 @@ fn build_scene(input: &EmbreeInput) -> EmbreeScene<'_> {
     let device = &input.device;
     let before = device.allocated.load(Ordering::Relaxed);
     #[allow(unsafe_code, reason = "Embree's C API")]
-    // SAFETY: live device; `rtcSetNewGeometryBuffer` returns a buffer of `count * stride`
-    // bytes (padded by Embree for its 16-byte loads), into which exactly the input's bytes are
-    // copied; the element types are `f32` and `u32` triples, as the formats say. The geometry
-    // is released once attached (the scene keeps its own reference).
+    // SAFETY: live device; the geometry gets its buffers (`new_buffer`) before it is
+    // committed, and is released once attached (the scene keeps its own reference).
     let handle = unsafe {
         let scene = sys::rtcNewScene(device.handle);
         let geometry = sys::rtcNewGeometry(device.handle, sys::RTCGeometryType::TRIANGLE);
-        let vertices = sys::rtcSetNewGeometryBuffer(
+        new_buffer(
+            device,
             geometry,
             sys::RTCBufferType::VERTEX,
-            0,
             sys::RTCFormat::FLOAT3,
-            size_of::<[f32; 3]>(),
-            input.vertices.len(),
+            &input.vertices,
+            "allocate the vertex buffer",
         );
-        device.check("allocate the vertex buffer");
-        ptr::copy_nonoverlapping(
-            input.vertices.as_ptr(),
-            vertices.cast::<[f32; 3]>(),
-            input.vertices.len(),
-        );
-        let indices = sys::rtcSetNewGeometryBuffer(
+        new_buffer(
+            device,
             geometry,
             sys::RTCBufferType::INDEX,
-            0,
             sys::RTCFormat::UINT3,
-            size_of::<[u32; 3]>(),
-            input.indices.len(),
-        );
-        device.check("allocate the index buffer");
-        ptr::copy_nonoverlapping(
-            input.indices.as_ptr(),
-            indices.cast::<[u32; 3]>(),
-            input.indices.len(),
+            &input.indices,
+            "allocate the index buffer",
         );
         sys::rtcCommitGeometry(geometry);
         sys::rtcAttachGeometry(scene, geometry);
@@ -186,6 +172,28 @@ fn build_scene(input: &EmbreeInput) -> EmbreeScene<'_> {
         handle,
         input,
         bytes: device.allocated.load(Ordering::Relaxed) - before,
+    }
+}
+
+/// Gives `geometry` (of `device`) a new buffer of `kind` holding a copy of `data`, one
+/// element per vertex or triangle, laid out as `format` says (`f32` or `u32` triples here).
+fn new_buffer<T: Copy>(
+    device: &Device,
+    geometry: sys::RTCGeometry,
+    kind: sys::RTCBufferType,
+    format: sys::RTCFormat,
+    data: &[T],
+    what: &str,
+) {
+    #[allow(unsafe_code, reason = "Embree's C API")]
+    // SAFETY: a live geometry; `rtcSetNewGeometryBuffer` returns a buffer of
+    // `data.len() * size_of::<T>()` bytes (padded by Embree for its 16-byte loads), checked
+    // for an allocation error before exactly that many bytes of `data` are copied into it.
+    unsafe {
+        let buffer =
+            sys::rtcSetNewGeometryBuffer(geometry, kind, 0, format, size_of::<T>(), data.len());
+        device.check(what);
+        ptr::copy_nonoverlapping(data.as_ptr(), buffer.cast::<T>(), data.len());
     }
 }
 
