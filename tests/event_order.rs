@@ -438,8 +438,8 @@ fn queries<P: Primitive>(rng: &mut ChaCha8Rng, prims: &[P], rays: usize) -> Vec<
 
 // ---- brute force ----
 
-fn brute<V: Vector>(s: &mut Stream<'_, V>, n: usize, kind: Kind) {
-    let all: Vec<u32> = (0..n as u32).collect();
+/// Brute force tests the finite primitives, in input order (`finite`: their indices).
+fn brute<V: Vector>(s: &mut Stream<'_, V>, finite: &[u32], kind: Kind) {
     let tests = match kind {
         Kind::FirstHit => Tests::FirstHit,
         Kind::AnyHit => Tests::AnyHit,
@@ -447,13 +447,13 @@ fn brute<V: Vector>(s: &mut Stream<'_, V>, n: usize, kind: Kind) {
         Kind::Nearest => Tests::Nearest,
         Kind::Range => Tests::Range,
     };
-    leaf(s, &all, tests, &mut Tested::default());
+    leaf(s, finite, tests, &mut Tested::default());
     s.end();
 }
 
-fn brute_collide<V: Vector>(s: &mut Stream<'_, V>, a: usize, b: usize) {
-    for i in 0..a as u32 {
-        for j in 0..b as u32 {
+fn brute_collide<V: Vector>(s: &mut Stream<'_, V>, a: &[u32], b: &[u32]) {
+    for &i in a {
+        for &j in b {
             s.take_for(
                 "PairTest(a, b), every pair in order",
                 (i, j),
@@ -588,15 +588,9 @@ fn min_distance<V: Vector>(
 /// The node-pair descent of every tree's collision query: the pair on top of the stack is
 /// tested; two overlapping leaves test their primitive pairs (each pair once, in order; all
 /// of them when `every_pair`); otherwise the larger node, or the inner one, is opened, its
-/// first child's pair on top. `unplaced` are the primitives of each tree that no node holds.
-fn collide<V: Vector>(
-    s: &mut Stream<'_, V>,
-    (a, b): (&Tree<V>, &Tree<V>),
-    unplaced: (&[u32], &[u32]),
-    every_pair: bool,
-) {
+/// first child's pair on top.
+fn collide<V: Vector>(s: &mut Stream<'_, V>, (a, b): (&Tree<V>, &Tree<V>), every_pair: bool) {
     let mut pairs = HashSet::new();
-    unplaced_pairs(s, unplaced, &mut pairs);
     if a.is_empty() || b.is_empty() {
         return s.end();
     }
@@ -833,9 +827,8 @@ fn plane_range<V: Vector>(s: &mut Stream<'_, V>, t: &Tree<V>, seen: &mut Tested)
 
 // ---- quadtrees and octrees ----
 
-/// The 2^D tree's walks (`octree/traverse.rs`, `nearest.rs`, `range_collide.rs`); `unplaced`
-/// are the primitives no cell holds, tested first.
-fn orthtree<V: Vector>(s: &mut Stream<'_, V>, t: &Tree<V>, unplaced: &[u32], kind: Kind) {
+/// The 2^D tree's walks (`quadtree/ray.rs`, `nearest.rs`, `range.rs`).
+fn orthtree<V: Vector>(s: &mut Stream<'_, V>, t: &Tree<V>, kind: Kind) {
     let mut seen = Tested::default();
     let tests = match kind {
         Kind::FirstHit => Tests::FirstHitBeyond,
@@ -844,8 +837,7 @@ fn orthtree<V: Vector>(s: &mut Stream<'_, V>, t: &Tree<V>, unplaced: &[u32], kin
         Kind::Nearest => Tests::Nearest,
         Kind::Range => Tests::Range,
     };
-    // unplaced = the leaf's grammar over them
-    if leaf(s, unplaced, tests, &mut seen) || t.is_empty() {
+    if t.is_empty() {
         return s.end();
     }
     match kind {
@@ -856,7 +848,7 @@ fn orthtree<V: Vector>(s: &mut Stream<'_, V>, t: &Tree<V>, unplaced: &[u32], kin
 }
 
 fn orthtree_ray<V: Vector>(s: &mut Stream<'_, V>, t: &Tree<V>, tests: Tests, seen: &mut Tested) {
-    // ray = unplaced RayBoundTest(root) (Prune(root, at Test) | {pop})
+    // ray = RayBoundTest(root) (Prune(root, at Test) | {pop})
     ray_test(s, ROOT);
     if pruned(s, ROOT, PruneAt::Test, missed) {
         return s.end();
@@ -891,7 +883,7 @@ fn orthtree_ray<V: Vector>(s: &mut Stream<'_, V>, t: &Tree<V>, tests: Tests, see
 }
 
 fn orthtree_nearest<V: Vector>(s: &mut Stream<'_, V>, t: &Tree<V>, seen: &mut Tested) {
-    // nearest = unplaced DistanceBoundTest(root) {EnterNode(n) (leaf | inner)}
+    // nearest = DistanceBoundTest(root) {EnterNode(n) (leaf | inner)}
     //           [Prune(n, at Pop) end]
     let mut queue = vec![(ROOT, distance_test(s, ROOT))];
     while !queue.is_empty() {
@@ -977,7 +969,7 @@ fn orthtree_nearest<V: Vector>(s: &mut Stream<'_, V>, t: &Tree<V>, seen: &mut Te
 }
 
 fn orthtree_range<V: Vector>(s: &mut Stream<'_, V>, t: &Tree<V>, seen: &mut Tested) {
-    // range = unplaced {Prune(n, at Pop) | EnterNode(n) [leaf]}, children pushed silently
+    // range = {Prune(n, at Pop) | EnterNode(n) [leaf]}, children pushed silently
     let mut stack = vec![ROOT];
     while let Some(n) = stack.pop() {
         if pruned(s, n, PruneAt::Pop, no_overlap) {
@@ -995,8 +987,8 @@ fn orthtree_range<V: Vector>(s: &mut Stream<'_, V>, t: &Tree<V>, seen: &mut Test
 
 // ---- the grid ----
 
-/// The grid's walks (`grid/ray_query.rs`, `nearest.rs`, `range_collide.rs`); `unplaced` as
-/// for the 2^D tree.
+/// The grid's walks (`grid/ray.rs`, `nearest.rs`, `range.rs`); `unplaced` are the primitives
+/// that no cell holds (updates moved them out of the grid's box), tested first.
 fn grid<V: Vector>(s: &mut Stream<'_, V>, t: &Tree<V>, unplaced: &[u32], kind: Kind) {
     let mut seen = Tested::default();
     let tests = match kind {
@@ -1357,12 +1349,7 @@ where
                     let mut rec = Recorder::default();
                     a.collide_observed(b, &mut rec);
                     let what = format!("{what}, collide");
-                    collide(
-                        &mut Stream::new(&rec.events, &what),
-                        (ta, tb),
-                        (&[], &[]),
-                        true,
-                    );
+                    collide(&mut Stream::new(&rec.events, &what), (ta, tb), true);
                     seen.add(&rec.events);
                 }
             }
@@ -1416,7 +1403,6 @@ fn check_plane_trees<P: Primitive>(
             collide(
                 &mut Stream::new(&rec.events, &what),
                 (&t, &Tree::of(&second)),
-                (&[], &[]),
                 false,
             );
             seen.add(&rec.events);
@@ -1440,7 +1426,6 @@ fn check_plane_trees<P: Primitive>(
             collide(
                 &mut Stream::new(&rec.events, &what),
                 (&Tree::of(&second), &t),
-                (&[], &[]),
                 false,
             );
             seen.add(&rec.events);
@@ -1481,25 +1466,13 @@ fn check_orthtree<P: Primitive>(
                 splits,
             );
             seen.add(&rec.events);
-            let unplaced = tree.unplaced();
-            check_queries(
-                &tree,
-                &qs,
-                &what,
-                &|s, kind| orthtree(s, &t, unplaced, kind),
-                seen,
-            );
+            check_queries(&tree, &qs, &what, &|s, kind| orthtree(s, &t, kind), seen);
             let second = Orthtree::build_with(other, &options);
             let mut rec = Recorder::default();
             tree.collide_observed(&second, &mut rec);
             let what = format!("{what}, collide");
             let t2 = Tree::of(&second);
-            collide(
-                &mut Stream::new(&rec.events, &what),
-                (&t, &t2),
-                (unplaced, second.unplaced()),
-                false,
-            );
+            collide(&mut Stream::new(&rec.events, &what), (&t, &t2), false);
             seen.add(&rec.events);
         }
     }
@@ -1554,6 +1527,13 @@ fn check_grid<P: Primitive>(scenes: &[(String, Vec<P>)], other: &[P], seed: u64,
     }
 }
 
+/// The indices of the primitives a query may test: those with finite coordinates.
+fn finite_indices<P: Primitive>(prims: &[P]) -> Vec<u32> {
+    (0..prims.len() as u32)
+        .filter(|&i| prims[i as usize].has_finite_coordinates())
+        .collect()
+}
+
 /// Brute force's queries and collisions.
 fn check_brute<P: Primitive>(scenes: &[(String, Vec<P>)], other: &[P], seed: u64, seen: &mut Seen) {
     let mut rng = rng(seed);
@@ -1561,19 +1541,14 @@ fn check_brute<P: Primitive>(scenes: &[(String, Vec<P>)], other: &[P], seed: u64
         let qs = queries(&mut rng, prims, 6);
         let s = BruteForce::build(prims);
         let what = format!("brute force over {name}");
-        check_queries(
-            &s,
-            &qs,
-            &what,
-            &|st, kind| brute(st, prims.len(), kind),
-            seen,
-        );
+        let finite = finite_indices(prims);
+        check_queries(&s, &qs, &what, &|st, kind| brute(st, &finite, kind), seen);
         let mut rec = Recorder::default();
         s.collide_observed(&BruteForce::build(other), &mut rec);
         brute_collide(
             &mut Stream::new(&rec.events, &format!("{what}, collide")),
-            prims.len(),
-            other.len(),
+            &finite,
+            &finite_indices(other),
         );
         seen.add(&rec.events);
     }

@@ -33,13 +33,14 @@ fn close(a: f32, b: f32, scale: f32) -> bool {
 
 /// Rays for a scene: random ones through its box, rays aimed exactly at primitive vertices
 /// (they graze shared edges and vertices), and axis-parallel rays from vertex coordinates
-/// (they start on and run along split planes and cell boundaries).
+/// (they start on and run along split planes and cell boundaries). The box is that of the
+/// finite primitives; the finite vertices of the others are aimed at too.
 pub fn rays_for<P: Primitive>(
     rng: &mut ChaCha8Rng,
     prims: &[P],
     count: usize,
 ) -> Vec<Ray<P::Point>> {
-    let bounds = prims.iter().fold(Aabb::EMPTY, |b, p| b.merge(&p.bounds()));
+    let bounds = finite_bounds(prims);
     let (centre, size) = if bounds.is_empty() {
         (P::Point::ZERO, 1.0)
     } else {
@@ -48,7 +49,11 @@ pub fn rays_for<P: Primitive>(
             bounds.size().max_element().max(f32::MIN_POSITIVE * 1e6),
         )
     };
-    let vertices: Vec<P::Point> = prims.iter().flat_map(Primitive::vertices).collect();
+    let vertices: Vec<P::Point> = prims
+        .iter()
+        .flat_map(Primitive::vertices)
+        .filter(|v| v.is_finite())
+        .collect();
     let mut rays = Vec::with_capacity(count);
     while rays.len() < count {
         let origin = centre + random_vector::<P::Point>(rng, size);
@@ -70,6 +75,25 @@ pub fn rays_for<P: Primitive>(
         }
     }
     rays
+}
+
+/// The box of the primitives that queries may answer with: the finite ones.
+fn finite_bounds<P: Primitive>(prims: &[P]) -> Aabb<P::Point> {
+    prims
+        .iter()
+        .filter(|p| p.has_finite_coordinates())
+        .fold(Aabb::EMPTY, |b, p| b.merge(&p.bounds()))
+}
+
+/// Panics when an answer names a primitive with a NaN or infinite coordinate, which no query
+/// may report ([`Primitive::has_finite_coordinates`]).
+fn assert_finite<P: Primitive>(name: &str, what: &str, prims: &[P], answer: &[usize]) {
+    if let Some(&i) = answer.iter().find(|&&i| !prims[i].has_finite_coordinates()) {
+        panic!(
+            "{name}: {what} names primitive {i}, which is not finite: {:?}",
+            prims[i]
+        );
+    }
 }
 
 /// Checks structure `S` against brute force on `scene`, with a second scene for collisions.
@@ -96,10 +120,12 @@ pub fn check_against_brute_force<S>(
         scene.prims.len(),
         "{name}: stats.primitives"
     );
-    assert!(
-        scene.prims.is_empty() || stats.references >= scene.prims.len(),
-        "{name}: references {stats:?}"
-    );
+    let finite = scene
+        .prims
+        .iter()
+        .filter(|p| p.has_finite_coordinates())
+        .count();
+    assert!(stats.references >= finite, "{name}: references {stats:?}");
 
     check_rays(rng, scene, &structure, &brute, budget);
     check_points(rng, scene, &structure, &brute, budget);
@@ -108,6 +134,9 @@ pub fn check_against_brute_force<S>(
     let other_brute = BruteForce::build(&other.prims);
     let mut pairs = structure.collide(&other_structure);
     pairs.sort_unstable();
+    let (mine, theirs): (Vec<usize>, Vec<usize>) = pairs.iter().copied().unzip();
+    assert_finite(name, "a collision pair", &scene.prims, &mine);
+    assert_finite(name, "a collision pair", &other.prims, &theirs);
     assert_eq!(
         pairs,
         brute.collide(&other_brute),
@@ -174,6 +203,10 @@ fn check_rays<S: SpatialIndex>(
             let all = structure.ray_all_hits(&ray, t_max);
             let all_want = brute.ray_all_hits(&ray, t_max);
             let mut got_prims: Vec<usize> = all.iter().map(|h| h.prim).collect();
+            let named: Vec<usize> = (got.iter().chain(&any).chain(&all_want))
+                .map(|h| h.prim)
+                .collect();
+            assert_finite(name, "a hit", &scene.prims, &named);
             let mut want_prims: Vec<usize> = all_want.iter().map(|h| h.prim).collect();
             got_prims.sort_unstable();
             want_prims.sort_unstable();
@@ -195,10 +228,7 @@ fn check_points<S: SpatialIndex>(
     budget: &Budget,
 ) {
     let name = &scene.name;
-    let bounds = scene
-        .prims
-        .iter()
-        .fold(Aabb::EMPTY, |b, p| b.merge(&p.bounds()));
+    let bounds = finite_bounds(&scene.prims);
     let scale = if bounds.is_empty() {
         1.0
     } else {
@@ -216,6 +246,8 @@ fn check_points<S: SpatialIndex>(
             let got = structure.k_nearest(point, k);
             let want = brute.k_nearest(point, k);
             assert_eq!(got.len(), want.len(), "{name}: {k} nearest to {point:?}");
+            let named: Vec<usize> = want.iter().map(|n| n.prim).collect();
+            assert_finite(name, "a nearest primitive", &scene.prims, &named);
             for (g, w) in got.iter().zip(&want) {
                 assert!(
                     close(g.distance, w.distance, 0.0),
@@ -230,6 +262,7 @@ fn check_points<S: SpatialIndex>(
         }
         let radius = rng.random_range(0.0..0.3) * scale;
         let ball = RangeShape::Ball(Sphere::new(point, radius));
+        assert_finite(name, "a range", &scene.prims, &brute.range(&ball));
         assert_eq!(
             structure.range(&ball),
             brute.range(&ball),

@@ -80,7 +80,8 @@ impl Map for Vec3 {
 /// The standard set of scenes built from a generator of `n` random primitives: empty, one,
 /// a few, many, duplicates, everything flattened onto one plane (line in 2D), a grid-aligned
 /// scene with integer coordinates (so that rays meet split planes and cell boundaries exactly),
-/// and the same scene scaled by 1e-20 and 1e15 (squared distances of 1e20 overflow f32).
+/// the same scene scaled by 1e-20 and 1e15 (squared distances of 1e20 overflow f32), and the
+/// many with a NaN or infinite coordinate in some primitives (which no query may report).
 pub fn standard_scenes<P: Map>(
     rng: &mut ChaCha8Rng,
     generate: impl Fn(&mut ChaCha8Rng, usize) -> Vec<P>,
@@ -123,5 +124,31 @@ pub fn standard_scenes<P: Map>(
         scene("integer grid coordinates", integer),
         scene("tiny (x1e-20)", scaled(&many, 1e-20)),
         scene("huge (x1e15)", scaled(&many, 1e15)),
+        scene("with NaN and infinite coordinates", poisoned(&many)),
     ]
+}
+
+/// `prims` with one coordinate of one vertex of every 23rd primitive made NaN, `+inf` or
+/// `-inf` in turn, on each axis in turn: segments and triangles that reach to infinity, and
+/// points at infinity.
+pub fn poisoned<P: Map>(prims: &[P]) -> Vec<P> {
+    let dim = <P::Point as bvhlab::Vector>::DIM;
+    prims
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            if i % 23 != 0 {
+                return *p;
+            }
+            let bad = [f32::NAN, f32::INFINITY, f32::NEG_INFINITY][i / 23 % 3];
+            let target = i / 23 % p.vertices().count();
+            let vertex = std::cell::Cell::new(0);
+            p.map(|mut v| {
+                if vertex.replace(vertex.get() + 1) == target {
+                    bvhlab::Vector::set_coord(&mut v, i / 23 % dim, bad);
+                }
+                v
+            })
+        })
+        .collect()
 }

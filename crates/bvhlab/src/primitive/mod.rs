@@ -54,8 +54,10 @@ use crate::{Ray, Vector};
 /// 4. **Deterministic and pure.** The same primitive and query give the same answer every
 ///    time (structures compare answers with brute force and with each other bit for bit).
 ///
-/// A primitive with a NaN or infinite vertex is left out of the BVHs; the other methods need
-/// not handle one.
+/// A primitive with a NaN or infinite coordinate ([`is_finite`](Primitive::has_finite_coordinates) is
+/// false) is not geometry a query can answer with: every structure leaves it out and no query
+/// reports it, [`BruteForce`](crate::BruteForce) included. The other methods need not handle
+/// one.
 ///
 /// You implement [`ray_hit`](Primitive::ray_hit) and [`project_point`](Primitive::project_point);
 /// every primitive then answers the same questions as volumes and structures, through
@@ -127,4 +129,20 @@ pub trait Primitive: Copy + Debug + PartialEq + Send + Sync + 'static {
     /// Whether two primitives share at least one point (touching counts): the leaf test of
     /// the collision query. Symmetric.
     fn intersects(&self, other: &Self) -> bool;
+
+    /// Whether every coordinate of the primitive is a finite number: all its
+    /// [`vertices`](Self::vertices) and both corners of its [`bounds`](Self::bounds).
+    ///
+    /// The one rule for the others, everywhere in the crate: a primitive with a NaN or
+    /// infinite coordinate is never an answer. Every structure leaves it out when it builds,
+    /// refits, updates or loads (it is in no node, cell or list, and `validate()` refuses a
+    /// tree that stores one), and [`BruteForce`](crate::BruteForce) skips it, so that every
+    /// structure still answers as brute force does. A point at infinity is at an infinite
+    /// distance from every query and a segment to infinity has no end to report; rather than
+    /// answer with such numbers, no query answers with them at all. The provided body is the
+    /// rule; there is no reason to replace it.
+    fn has_finite_coordinates(&self) -> bool {
+        let b = self.bounds();
+        b.min.is_finite() && b.max.is_finite() && self.vertices().all(Vector::is_finite)
+    }
 }

@@ -98,7 +98,7 @@ pub(crate) fn is_degenerate(t: &Triangle3) -> bool {
 
 /// Both primitives finite and their bounds overlapping (exact `f32` comparisons).
 fn prefilter<P: Primitive>(a: &P, b: &P) -> bool {
-    is_finite(a) && is_finite(b) && a.bounds().overlaps(&b.bounds())
+    a.has_finite_coordinates() && b.has_finite_coordinates() && a.bounds().overlaps(&b.bounds())
 }
 
 /// The part of the box inside the primitive's bounds, or `None` when the primitive is not
@@ -107,12 +107,8 @@ fn prefilter<P: Primitive>(a: &P, b: &P) -> bool {
 /// box, and small, which keeps the rounding of the later tests small.
 fn clipped_box<P: Primitive>(prim: &P, aabb: &Aabb<P::Point>) -> Option<(P::Point, P::Point)> {
     let bounds = prim.bounds();
-    (is_finite(prim) && bounds.overlaps(aabb))
+    (prim.has_finite_coordinates() && bounds.overlaps(aabb))
         .then(|| (bounds.min.max(aabb.min), bounds.max.min(aabb.max)))
-}
-
-fn is_finite<P: Primitive>(prim: &P) -> bool {
-    prim.vertices().all(Vector::is_finite)
 }
 
 fn lift(p: Vec2) -> Vec3 {

@@ -56,7 +56,11 @@ use header::{Header, checksum};
 
 /// The version of the file format this library writes and reads. It changes whenever a
 /// saved structure's layout does; a file of another version is refused, never misread.
-pub const FORMAT_VERSION: u32 = 1;
+///
+/// Version 2 (issue 28): a primitive with a NaN or infinite coordinate is never an answer, so
+/// the 2^D trees lost their list of such primitives and a grid's unplaced list no longer holds
+/// them.
+pub const FORMAT_VERSION: u32 = 2;
 
 /// The structure as bytes: the header, then the payload.
 ///

@@ -1,5 +1,9 @@
 //! The baseline: test every primitive. The reference every structure is checked against, and
 //! the counter the lab shows beside each structure's.
+//!
+//! "Every primitive" means every finite one: a primitive with a NaN or infinite coordinate is
+//! never an answer ([`Primitive::has_finite_coordinates`]), here as in every structure, so brute force
+//! skips it without a test (no event, no cost).
 
 use super::query::{by_t_then_prim, placed};
 use super::{
@@ -8,7 +12,8 @@ use super::{
 };
 use crate::{Primitive, Ray, Vector};
 
-/// No structure at all: every query tests every primitive.
+/// No structure at all: every query tests every primitive (but those with a NaN or infinite
+/// coordinate, which no query reports: [`Primitive::has_finite_coordinates`]).
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct BruteForce<P: Primitive> {
@@ -17,6 +22,21 @@ pub struct BruteForce<P: Primitive> {
 
 fn prim_id(i: usize) -> u32 {
     i as u32
+}
+
+impl<P: Primitive> BruteForce<P> {
+    /// The primitives a query tests, with their indices: the finite ones.
+    fn finite(&self) -> impl Iterator<Item = (usize, &P)> {
+        self.prims
+            .iter()
+            .enumerate()
+            .filter(|(_, prim)| prim.has_finite_coordinates())
+    }
+
+    /// How many primitives a query tests.
+    fn finite_count(&self) -> usize {
+        self.finite().count()
+    }
 }
 
 impl<P: Primitive> SpatialIndex for BruteForce<P> {
@@ -40,7 +60,7 @@ impl<P: Primitive> SpatialIndex for BruteForce<P> {
         observer: &mut O,
     ) -> Traced<Option<Hit>> {
         let mut best = HitTracker::new(t_max);
-        for (i, prim) in self.prims.iter().enumerate() {
+        for (i, prim) in self.finite() {
             let t = prim.ray_hit(ray).filter(|&t| t <= t_max);
             observer.on(Event::PrimitiveTest {
                 prim: prim_id(i),
@@ -57,7 +77,7 @@ impl<P: Primitive> SpatialIndex for BruteForce<P> {
         }
         Traced {
             answer: placed(best.best(), &self.prims, ray),
-            cost: tests(self.prims.len()),
+            cost: tests(self.finite_count()),
         }
     }
 
@@ -67,7 +87,7 @@ impl<P: Primitive> SpatialIndex for BruteForce<P> {
         t_max: f32,
         observer: &mut O,
     ) -> Traced<Option<Hit>> {
-        for (i, prim) in self.prims.iter().enumerate() {
+        for (tested, (i, prim)) in self.finite().enumerate() {
             let t = prim.ray_hit(ray).filter(|&t| t <= t_max);
             observer.on(Event::PrimitiveTest {
                 prim: prim_id(i),
@@ -76,13 +96,13 @@ impl<P: Primitive> SpatialIndex for BruteForce<P> {
             if let Some(t) = t {
                 return Traced {
                     answer: Some(Hit::on(i, t, prim, ray)),
-                    cost: tests(i + 1),
+                    cost: tests(tested + 1),
                 };
             }
         }
         Traced {
             answer: None,
-            cost: tests(self.prims.len()),
+            cost: tests(self.finite_count()),
         }
     }
 
@@ -93,7 +113,7 @@ impl<P: Primitive> SpatialIndex for BruteForce<P> {
         observer: &mut O,
     ) -> Traced<Vec<Hit>> {
         let mut hits: Vec<Hit> = Vec::new();
-        for (i, prim) in self.prims.iter().enumerate() {
+        for (i, prim) in self.finite() {
             let t = prim.ray_hit(ray).filter(|&t| t <= t_max);
             observer.on(Event::PrimitiveTest {
                 prim: prim_id(i),
@@ -104,7 +124,7 @@ impl<P: Primitive> SpatialIndex for BruteForce<P> {
         hits.sort_by(by_t_then_prim);
         Traced {
             answer: hits,
-            cost: tests(self.prims.len()),
+            cost: tests(self.finite_count()),
         }
     }
 
@@ -121,7 +141,7 @@ impl<P: Primitive> SpatialIndex for BruteForce<P> {
             };
         }
         let mut nearest = NearestSet::new(k);
-        for (i, prim) in self.prims.iter().enumerate() {
+        for (i, prim) in self.finite() {
             let q = prim.project_point(point);
             let d = (q - point).length();
             observer.on(Event::PrimitiveTest {
@@ -137,7 +157,7 @@ impl<P: Primitive> SpatialIndex for BruteForce<P> {
         }
         Traced {
             answer: nearest.into_vec(),
-            cost: tests(self.prims.len()),
+            cost: tests(self.finite_count()),
         }
     }
 
@@ -147,7 +167,7 @@ impl<P: Primitive> SpatialIndex for BruteForce<P> {
         observer: &mut O,
     ) -> Traced<Vec<usize>> {
         let mut found = Vec::new();
-        for (i, prim) in self.prims.iter().enumerate() {
+        for (i, prim) in self.finite() {
             let overlap = shape.overlaps_primitive(prim);
             observer.on(Event::PrimitiveTest {
                 prim: prim_id(i),
@@ -163,7 +183,7 @@ impl<P: Primitive> SpatialIndex for BruteForce<P> {
         }
         Traced {
             answer: found,
-            cost: tests(self.prims.len()),
+            cost: tests(self.finite_count()),
         }
     }
 
@@ -173,8 +193,8 @@ impl<P: Primitive> SpatialIndex for BruteForce<P> {
         observer: &mut O,
     ) -> Traced<Vec<(usize, usize)>> {
         let mut pairs = Vec::new();
-        for (i, a) in self.prims.iter().enumerate() {
-            for (j, b) in other.prims.iter().enumerate() {
+        for (i, a) in self.finite() {
+            for (j, b) in other.finite() {
                 let overlap = a.intersects(b);
                 observer.on(Event::PairTest {
                     a: prim_id(i),
@@ -188,7 +208,7 @@ impl<P: Primitive> SpatialIndex for BruteForce<P> {
         }
         Traced {
             answer: pairs,
-            cost: tests(self.prims.len() * other.prims.len()),
+            cost: tests(self.finite_count() * other.finite_count()),
         }
     }
 

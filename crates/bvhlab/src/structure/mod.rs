@@ -73,7 +73,9 @@ pub type PointOf<S> = <<S as SpatialIndex>::Prim as Primitive>::Point;
 /// Primitives are named by their index in the slice the structure was built from. Answers
 /// are deterministic and equal to [`BruteForce`]'s: hits at equal `t` and neighbours at equal
 /// distance are ordered by index. A query point with a NaN or infinite coordinate gets no
-/// answer (`None` or empty); the `checked_` forms report it as an error instead.
+/// answer (`None` or empty); the `checked_` forms report it as an error instead. A primitive
+/// with a NaN or infinite coordinate is never an answer, from any structure or from brute
+/// force ([`Primitive::has_finite_coordinates`]): it keeps its index, and nothing else sees it.
 pub trait SpatialIndex: RayCast<PointOf<Self>> + PointQuery<PointOf<Self>> {
     /// What the structure stores.
     type Prim: Primitive;

@@ -25,7 +25,7 @@
 //! walked, `c` a child of it, `p` a primitive. Walks with a stack take their next `n` from
 //! its top, where a node's children are pushed so that `rank` 0 is on top; a priority queue
 //! gives the nearest. Some queries end before they begin and report nothing (beyond the
-//! tests of unplaced primitives, below): on an empty tree or grid, for `k = 0` or a
+//! tests of a grid's unplaced primitives, below): on an empty tree or grid, for `k = 0` or a
 //! non-finite query point, and for a NaN `t_max` in a BVH, k-d or BSP tree (or a negative one
 //! in the last two). `tests/event_order.rs` (in the `bvhlab-tests` crate) checks every
 //! structure's events against these grammars, query by query.
@@ -106,13 +106,11 @@
 //! `BeyondBestHit` (the best hit, or `t_max`); the nearest query prunes `NoNearer`, the range
 //! `NoOverlap`.
 //!
-//! **Quadtrees and octrees** (`quadtree/ray.rs`, `nearest.rs`, `range.rs`, `collide.rs`). The
-//! primitives with a non-finite coordinate sit in no cell: each query tests them first
-//! (`unplaced`, the leaf's grammar over them; an any-hit query that hits one ends there).
+//! **Quadtrees and octrees** (`quadtree/ray.rs`, `nearest.rs`, `range.rs`, `collide.rs`).
 //! Primitives listed in several cells are mailboxed, as in the k-d tree.
 //!
 //! ```text
-//! ray      = unplaced RayBoundTest(root) (Prune(root, at Test) | {pop})
+//! ray      = RayBoundTest(root) (Prune(root, at Test) | {pop})
 //! pop      = Prune(n, at Pop) | EnterNode(n) (leaf | inner)
 //! inner    = {RayBoundTest(c) [Prune(c, at Test)]}    every child, in stored order
 //!            {ChildQueued(n, c)}    the children the ray meets that are not empty leaves,
@@ -121,25 +119,27 @@
 //!            any hit:     {PrimitiveTest(p)}     end at the first hit
 //!            all hits:    {PrimitiveTest(p)}
 //!
-//! nearest  = unplaced DistanceBoundTest(root) {EnterNode(n) (leaf | inner)}
+//! nearest  = DistanceBoundTest(root) {EnterNode(n) (leaf | inner)}
 //!            [Prune(n, at Pop) end]      n: the nearest cell queued; the first one no nearer
 //!                                        than the k-th best ends the search
 //! inner    = {DistanceBoundTest(c)}     every child, in stored order
 //!            {ChildQueued(n, c) | Prune(c, at Test)}    the non-empty ones, nearest first
 //! leaf     = {PrimitiveTest(p) [NewBest(p)]}
 //!
-//! range    = unplaced {Prune(n, at Pop) | EnterNode(n) [leaf]}
+//! range    = {Prune(n, at Pop) | EnterNode(n) [leaf]}
 //!                     an inner node's children are pushed silently, the first on top
 //! leaf     = {PrimitiveTest(p)}
 //!
-//! collide  = unplaced {NodePairTest(a, b) {PairTest}}   as the BVH's, the larger cell
+//! collide  = {NodePairTest(a, b) {PairTest}}   as the BVH's, the larger cell
 //!                     opened; pairs met again, or whose boxes are apart, are skipped
 //! ```
 //!
 //! A range that is not a finite box or ball tests every primitive, and reports nothing else.
 //!
-//! **Uniform grid** (`grid/ray.rs`, `nearest.rs`, `range.rs`, `collide.rs`). Unplaced
-//! primitives and mailboxing as in the quadtree; cells are named by their linear index.
+//! **Uniform grid** (`grid/ray.rs`, `nearest.rs`, `range.rs`, `collide.rs`). The primitives
+//! that updates moved out of the grid's box sit in no cell: each query tests them first
+//! (`unplaced`, the cell's grammar over them; an any-hit query that hits one ends there).
+//! Mailboxing as in the quadtree; cells are named by their linear index.
 //!
 //! ```text
 //! ray      = unplaced {CellEnter(c) cell} [Prune(c, at Stop)]

@@ -12,10 +12,10 @@
 use super::layout::BspNode;
 use super::splitter::{SplitMix64, choose_split};
 use super::{BspOptions, BspTree};
+use crate::Primitive;
 use crate::structure::plane_tree::{REFERENCE_BUDGET, share_budget};
 use crate::structure::{Event, NodeId, Observer};
 use crate::volume::{Aabb, BoundingVolume};
-use crate::{Primitive, Vector};
 
 /// The deepest a tree may grow, whatever the options say (the recursion depth).
 pub const DEPTH_LIMIT: usize = 64;
@@ -44,7 +44,7 @@ pub(crate) fn build<P: Primitive, O: Observer<P::Point>>(
     observer: &mut O,
 ) -> BspTree<P> {
     let refs: Vec<u32> = (0..prims.len() as u32)
-        .filter(|&i| is_finite_box(&prims[i as usize].bounds()))
+        .filter(|&i| prims[i as usize].has_finite_coordinates())
         .collect();
     let mut builder = Builder {
         prims,
@@ -141,9 +141,4 @@ pub(crate) fn bounds_of<P: Primitive>(prims: &[P], refs: &[u32]) -> Aabb<P::Poin
     refs.iter().fold(Aabb::EMPTY, |b: Aabb<P::Point>, &r| {
         b.merge(&prims[r as usize].bounds())
     })
-}
-
-/// Whether every coordinate of a box is finite.
-pub(crate) fn is_finite_box<V: Vector>(b: &Aabb<V>) -> bool {
-    b.min.is_finite() && b.max.is_finite()
 }

@@ -15,7 +15,6 @@
 use std::fmt;
 
 use super::Bvh;
-use super::layout::is_indexable;
 use super::volume::NodeVolume;
 use crate::Primitive;
 use crate::volume::{Aabb, BoundingVolume};
@@ -110,7 +109,7 @@ pub(super) fn check_same_primitives<P: Primitive>(
         });
     }
     for (prim, p) in new.iter().enumerate() {
-        let finite_now = is_indexable(p);
+        let finite_now = p.has_finite_coordinates();
         if finite_now != indexed(prim) {
             return Err(RefitError::IndexableChanged { prim, finite_now });
         }
@@ -170,7 +169,11 @@ where
     /// [`RefitError`] when the count differs or a primitive became (or stopped being)
     /// non-finite; the tree is then left unchanged.
     pub fn refit(&mut self, prims: &[P]) -> Result<RefitReport, RefitError> {
-        check_same_primitives(self.prims.len(), |i| is_indexable(&self.prims[i]), prims)?;
+        check_same_primitives(
+            self.prims.len(),
+            |i| self.prims[i].has_finite_coordinates(),
+            prims,
+        )?;
         self.prims.copy_from_slice(prims);
         for (slot, &id) in self.leaf_prims.iter_mut().zip(&self.leaf_ids) {
             *slot = prims[id as usize];

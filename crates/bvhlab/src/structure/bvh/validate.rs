@@ -1,7 +1,6 @@
 //! Well-formedness: topology, primitive bookkeeping, and every volume around its primitives
 //! (parry's `bvh_validation.rs` checks the same for its trees).
 
-use super::layout::is_indexable;
 use super::volume::NodeVolume;
 use super::{Bvh, MAX_DEPTH};
 use crate::Primitive;
@@ -59,7 +58,7 @@ where
                     "primitive {i} breaks the Primitive contract: {why}"
                 ));
             }
-            if seen[i] != is_indexable(prim) {
+            if seen[i] != prim.has_finite_coordinates() {
                 let what = if seen[i] {
                     "non-finite but indexed"
                 } else {

@@ -2,7 +2,7 @@
 //! pack the lists into one array in cell order.
 
 use super::layout::{CellList, Grid, GridOptions};
-use super::probe::{is_placeable, placeable_bounds, prim_id};
+use super::probe::{finite_bounds, prim_id};
 use super::resolution::{choose_resolution, planes};
 use crate::structure::{Event, NodeId, Observer};
 use crate::{Primitive, Vector};
@@ -27,14 +27,13 @@ impl<P: Primitive> Grid<P> {
     /// listed in the cells its box merely covers. The (cell, primitive) pairs are then sorted
     /// into cell order by a counting sort, which keeps each list ascending. `O(n + cells +
     /// references)` besides the exact tests. Primitives with a NaN or infinite coordinate are
-    /// kept aside (see [`Grid::unplaced`]).
+    /// left out ([`Primitive::has_finite_coordinates`]).
     pub fn build_observed<O: Observer<P::Point>>(
         prims: &[P],
         options: &GridOptions,
         observer: &mut O,
     ) -> Self {
-        let (bounds, unplaced) = placeable_bounds(prims);
-        let placed = prims.len() - unplaced.len();
+        let (bounds, placed) = finite_bounds(prims);
         let dims = choose_resolution(&bounds, placed, options);
         let mut grid = Self {
             prims: prims.to_vec(),
@@ -50,7 +49,7 @@ impl<P: Primitive> Grid<P> {
             cell_lists: Vec::new(),
             cell_prims: Vec::new(),
             spare: 0,
-            unplaced,
+            unplaced: Vec::new(),
             options: *options,
         };
         if grid.cell_count() == 0 {
@@ -61,7 +60,7 @@ impl<P: Primitive> Grid<P> {
         let mut pairs: Vec<(u32, u32)> = Vec::with_capacity(placed + placed / 2);
         let mut cells = Vec::new();
         for (i, prim) in prims.iter().enumerate() {
-            if is_placeable(prim) {
+            if prim.has_finite_coordinates() {
                 grid.cells_of(prim, &mut cells);
                 pairs.extend(cells.iter().map(|&c| (c, prim_id(i))));
             }

@@ -68,8 +68,9 @@ pub struct Grid<P: Primitive> {
     /// rooms left behind by lists that moved (`update.rs`, which packs the lists again when
     /// these outnumber the entries and cells).
     pub(super) spare: usize,
-    /// Primitives in no cell, ascending, tested by every query: those with a NaN or
-    /// infinite coordinate, and (after an update) those that stick out of the grid's box.
+    /// Primitives in no cell, ascending, tested by every query: those that an update moved
+    /// (or inserted) so that they stick out of the grid's box. Primitives with a NaN or
+    /// infinite coordinate are in no cell and not here either: no query answers with them.
     pub(super) unplaced: Vec<u32>,
     pub(super) options: GridOptions,
 }
@@ -147,9 +148,10 @@ impl<P: Primitive> Grid<P> {
         &self.cell_prims[self.cell_lists[index].range()]
     }
 
-    /// The primitives in no cell, ascending, which every query tests: those with a NaN or
-    /// infinite coordinate, and those that an update moved (or inserted) outside the
-    /// grid's box, which is fixed at build time.
+    /// The primitives in no cell, ascending, which every query tests: those that an update
+    /// moved (or inserted) outside the grid's box, which is fixed at build time. A primitive
+    /// with a NaN or infinite coordinate is neither in a cell nor here: it is left out
+    /// ([`Primitive::has_finite_coordinates`]).
     pub fn unplaced(&self) -> &[u32] {
         &self.unplaced
     }
@@ -160,9 +162,15 @@ impl<P: Primitive> Grid<P> {
     pub(super) fn fits(&self, prim: &P) -> bool {
         let b = prim.bounds();
         self.cell_count() > 0
-            && prim.vertices().all(Vector::is_finite)
+            && prim.has_finite_coordinates()
             && self.bounds.contains(b.min)
             && self.bounds.contains(b.max)
+    }
+
+    /// Whether a primitive belongs in [`unplaced`](Self::unplaced): finite, but not inside
+    /// the grid's box.
+    pub(super) fn belongs_unplaced(&self, prim: &P) -> bool {
+        prim.has_finite_coordinates() && !self.fits(prim)
     }
 
     /// Cell list entries in all (a primitive counts once per cell that lists it).

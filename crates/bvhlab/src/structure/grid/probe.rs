@@ -1,11 +1,10 @@
 //! Per-query bookkeeping shared by the two space partitions, the uniform grid and the 2^D
 //! tree: primitive tests that report themselves, count their cost and skip primitives already
 //! tested (a partition lists a primitive in several cells), the pairs of a collision query,
-//! and the primitives that cannot be placed in cells.
+//! and the box the cells tile.
 //!
-//! Primitives with a NaN or infinite coordinate cannot be placed in any cell; both structures
-//! keep them in an "unplaced" list that every query tests first, so that every answer still
-//! equals brute force's.
+//! Primitives with a NaN or infinite coordinate ([`Primitive::has_finite_coordinates`]) are in no cell and
+//! no list of either structure: no query answers with them, as brute force does not.
 
 use std::cmp::Ordering;
 use std::collections::HashSet;
@@ -21,23 +20,14 @@ pub(crate) fn prim_id(i: usize) -> u32 {
     i as u32
 }
 
-/// Whether every vertex of the primitive is finite, so that it can be placed in cells.
-pub(crate) fn is_placeable<P: Primitive>(prim: &P) -> bool {
-    prim.vertices().all(Vector::is_finite)
-}
-
-/// The box around the placeable primitives, and the indices of the others.
-pub(crate) fn placeable_bounds<P: Primitive>(prims: &[P]) -> (Aabb<P::Point>, Vec<u32>) {
-    let mut bounds = Aabb::EMPTY;
-    let mut unplaced = Vec::new();
-    for (i, prim) in prims.iter().enumerate() {
-        if is_placeable(prim) {
-            bounds = bounds.merge(&prim.bounds());
-        } else {
-            unplaced.push(prim_id(i));
-        }
-    }
-    (bounds, unplaced)
+/// The box around the finite primitives, and how many of them there are.
+pub(crate) fn finite_bounds<P: Primitive>(prims: &[P]) -> (Aabb<P::Point>, usize) {
+    prims
+        .iter()
+        .filter(|prim| prim.has_finite_coordinates())
+        .fold((Aabb::EMPTY, 0), |(bounds, count), prim| {
+            (bounds.merge(&prim.bounds()), count + 1)
+        })
 }
 
 /// Tests one primitive against the region, reporting the test.

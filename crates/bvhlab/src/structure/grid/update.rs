@@ -14,9 +14,10 @@
 //! touched.
 //!
 //! A primitive that does not lie inside the grid's box (it moved out, or was inserted
-//! outside, or has a NaN or infinite coordinate) goes to the unplaced list, which every
-//! query tests before walking the cells ([`Grid::unplaced`]). Queries stay exact, and pay
-//! one test per such primitive: when many wander out, rebuild the grid.
+//! outside) goes to the unplaced list, which every query tests before walking the cells
+//! ([`Grid::unplaced`]). Queries stay exact, and pay one test per such primitive: when many
+//! wander out, rebuild the grid. A primitive given a NaN or infinite coordinate leaves its
+//! cells and goes nowhere: no query answers with it ([`Primitive::has_finite_coordinates`]).
 
 use super::layout::{CellList, Grid};
 use crate::Primitive;
@@ -89,8 +90,8 @@ impl<P: Primitive> Grid<P> {
     pub fn replace(&mut self, index: usize, prim: P) -> Result<P, UpdateError> {
         check_index(index, self.prims.len())?;
         let (mut before, mut after) = (Vec::new(), Vec::new());
-        let was_in = self.cells_if_fits(&self.prims[index], &mut before);
-        let now_in = self.cells_if_fits(&prim, &mut after);
+        self.cells_if_fits(&self.prims[index], &mut before);
+        self.cells_if_fits(&prim, &mut after);
         let id = index as u32;
         // Both lists ascend: walk them together, leaving cells only in `before` and
         // joining cells only in `after`.
@@ -109,9 +110,12 @@ impl<P: Primitive> Grid<P> {
                 (_, None) => unreachable!("the loop runs while one list has cells"),
             }
         }
-        match (was_in, now_in) {
-            (true, false) => insert_sorted(&mut self.unplaced, id),
-            (false, true) => remove_sorted(&mut self.unplaced, id),
+        match (
+            self.belongs_unplaced(&self.prims[index]),
+            self.belongs_unplaced(&prim),
+        ) {
+            (false, true) => insert_sorted(&mut self.unplaced, id),
+            (true, false) => remove_sorted(&mut self.unplaced, id),
             _ => {}
         }
         Ok(std::mem::replace(&mut self.prims[index], prim))
@@ -128,14 +132,15 @@ impl<P: Primitive> Grid<P> {
         fits
     }
 
-    /// Lists primitive `index` (already in `prims`) in its cells, or as unplaced.
+    /// Lists primitive `index` (already in `prims`) in its cells, or as unplaced (or
+    /// nowhere, when it is not finite).
     fn place(&mut self, index: usize) {
         let mut cells = Vec::new();
         if self.cells_if_fits(&self.prims[index], &mut cells) {
             for c in cells {
                 self.join(c as usize, index as u32);
             }
-        } else {
+        } else if self.belongs_unplaced(&self.prims[index]) {
             insert_sorted(&mut self.unplaced, index as u32);
         }
     }
@@ -147,7 +152,7 @@ impl<P: Primitive> Grid<P> {
             for c in cells {
                 self.leave(c as usize, index as u32);
             }
-        } else {
+        } else if self.belongs_unplaced(&self.prims[index]) {
             remove_sorted(&mut self.unplaced, index as u32);
         }
     }

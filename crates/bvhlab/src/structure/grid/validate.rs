@@ -3,7 +3,6 @@
 use std::cmp::Ordering;
 
 use super::layout::Grid;
-use super::probe::is_placeable;
 use crate::structure::{Stats, ValidationError};
 use crate::{Primitive, Vector};
 
@@ -35,8 +34,9 @@ impl<P: Primitive> Grid<P> {
     }
 
     /// Checks the layout (planes, cell lists apart from each other, sorted lists), that the
-    /// unplaced primitives are exactly those that do not fit in the grid's box (a NaN or
-    /// infinite coordinate, or moved out by an update), and that every primitive is listed
+    /// unplaced primitives are exactly the finite ones that do not fit in the grid's box
+    /// (moved out by an update; one with a NaN or infinite coordinate is in no list at all),
+    /// and that every primitive is listed
     /// in exactly the cells it shares a point with: against every cell on moderate inputs,
     /// else against the cells its box touches.
     pub(super) fn check(&self) -> Result<(), ValidationError> {
@@ -46,15 +46,16 @@ impl<P: Primitive> Grid<P> {
             return fail("the unplaced list is not ascending".into());
         }
         for (i, prim) in self.prims.iter().enumerate() {
-            if self.fits(prim) == self.unplaced.binary_search(&(i as u32)).is_ok() {
-                let why = if !is_placeable(prim) {
-                    "has a NaN or infinite coordinate"
+            let listed = self.unplaced.binary_search(&(i as u32)).is_ok();
+            if self.belongs_unplaced(prim) != listed {
+                let why = if !prim.has_finite_coordinates() {
+                    "has a NaN or infinite coordinate but is listed as unplaced"
                 } else if self.fits(prim) {
-                    "fits in the grid box"
+                    "fits in the grid box but is listed as unplaced"
                 } else {
-                    "sticks out of the grid box"
+                    "sticks out of the grid box but is not listed as unplaced"
                 };
-                return fail(format!("primitive {i} {why} and is wrongly (un)placed"));
+                return fail(format!("primitive {i} {why}"));
             }
         }
         if self
@@ -64,7 +65,7 @@ impl<P: Primitive> Grid<P> {
         {
             return fail("the unplaced list names a primitive out of range".into());
         }
-        let placed = self.prims.len() - self.unplaced.len();
+        let placed = self.prims.iter().filter(|prim| self.fits(prim)).count();
         if self.cell_count().saturating_mul(placed) <= EXHAUSTIVE_PAIRS {
             self.check_every_cell()
         } else {

@@ -1,6 +1,6 @@
 //! How a k-d tree is built: which builder, and when to stop splitting.
 
-use crate::{Primitive, Vector};
+use crate::Primitive;
 
 /// How the median builder picks a node's split axis.
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -99,7 +99,7 @@ impl KdTreeOptions {
         // A primitive with a non-finite coordinate is not stored: it does not count.
         let is_point = |p: &P| {
             let b = p.bounds();
-            b.min == b.max || !(b.min.is_finite() && b.max.is_finite())
+            b.min == b.max || !p.has_finite_coordinates()
         };
         if !prims.is_empty() && prims.iter().all(is_point) {
             Self::median(AxisRule::LongestAxis)

@@ -2,7 +2,7 @@
 //! primitive stored in every leaf whose cell it reaches into.
 
 use super::KdTree;
-use super::build::{DEPTH_LIMIT, is_finite_box};
+use super::build::DEPTH_LIMIT;
 use super::layout::KdNode;
 use crate::structure::ValidationError;
 use crate::structure::plane_tree::validate::{
@@ -60,8 +60,8 @@ pub fn validate<P: Primitive>(tree: &KdTree<P>) -> Result<(), ValidationError> {
     let finite = tree
         .prims()
         .iter()
+        .filter(|prim| prim.has_finite_coordinates())
         .map(Primitive::bounds)
-        .filter(is_finite_box)
         .fold(Aabb::EMPTY, |c: Aabb<P::Point>, b| c.merge(&b));
     if !tree.nodes().is_empty() && finite != tree.root_cell() {
         return Err(ValidationError::new(format!(

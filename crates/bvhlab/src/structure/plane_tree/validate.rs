@@ -158,8 +158,7 @@ pub(crate) fn check_coverage<T: PlaneTree>(
             let at = leaves[index].partition_point(|&leaf| leaf < node);
             leaves[index].get(at).is_some_and(|&leaf| leaf < end)
         };
-        let finite = prim.bounds().min.is_finite() && prim.bounds().max.is_finite();
-        if !finite {
+        if !prim.has_finite_coordinates() {
             if !leaves[index].is_empty() {
                 return Err(ValidationError::new(format!(
                     "primitive {index} has non-finite coordinates but is stored"

@@ -5,7 +5,7 @@ use super::layout::{
     INNER, MAX_DEPTH, Node, Orthtree, OrthtreeOptions, child_box_at, child_count, midpoint,
     split_point,
 };
-use crate::structure::grid::probe::{is_placeable, placeable_bounds};
+use crate::structure::grid::probe::finite_bounds;
 use crate::structure::{Event, NodeId, Observer};
 use crate::volume::Aabb;
 use crate::{BoundingVolume, Primitive, Vector};
@@ -145,8 +145,8 @@ impl<P: Primitive> Orthtree<P> {
     /// primitives, or cost more than it saves by the surface area heuristic), which keeps
     /// inseparable input (identical primitives, many sharing a point) from splitting all the
     /// way down. Each split costs `O(n)` plus the exact tests of the primitives that straddle
-    /// the cell's centre planes. Primitives with a NaN or infinite coordinate are kept aside
-    /// ([`Orthtree::unplaced`]).
+    /// the cell's centre planes. Primitives with a NaN or infinite coordinate are left out
+    /// ([`Primitive::has_finite_coordinates`]).
     pub fn build_observed<O: Observer<P::Point>>(
         prims: &[P],
         options: &OrthtreeOptions,
@@ -156,13 +156,12 @@ impl<P: Primitive> Orthtree<P> {
             leaf_size: options.leaf_size.max(1),
             max_depth: options.max_depth.min(MAX_DEPTH),
         };
-        let (bounds, unplaced) = placeable_bounds(prims);
+        let (bounds, _) = finite_bounds(prims);
         let mut tree = Self {
             prims: prims.to_vec(),
             root: Aabb::EMPTY,
             nodes: Vec::new(),
             refs: Vec::new(),
-            unplaced,
             options,
         };
         if bounds.is_empty() {
@@ -170,7 +169,7 @@ impl<P: Primitive> Orthtree<P> {
         }
         tree.root = cube_around(&bounds);
         let all: Vec<u32> = (0..prims.len() as u32)
-            .filter(|&i| is_placeable(&prims[i as usize]))
+            .filter(|&i| prims[i as usize].has_finite_coordinates())
             .collect();
         tree.nodes.push(Node { first: 0, count: 0 });
         let mut stack = vec![(0u32, None, tree.root, 0usize, all)];

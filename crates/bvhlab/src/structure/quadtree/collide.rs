@@ -21,11 +21,6 @@ impl<P: Primitive> Orthtree<P> {
         observer: &mut O,
     ) -> Traced<Vec<(usize, usize)>> {
         let mut pairs = PairCollector::default();
-        pairs.test_unplaced(
-            (&self.prims, &self.unplaced),
-            (&other.prims, &other.unplaced),
-            observer,
-        );
         if self.nodes.is_empty() || other.nodes.is_empty() {
             return pairs.finish();
         }

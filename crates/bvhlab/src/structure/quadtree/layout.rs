@@ -82,8 +82,6 @@ pub struct Orthtree<P: Primitive> {
     pub(super) nodes: Vec<Node>,
     /// The leaves' primitive lists, each ascending.
     pub(super) refs: Vec<u32>,
-    /// Primitives with a NaN or infinite coordinate: in no cell, tested by every query.
-    pub(super) unplaced: Vec<u32>,
     pub(super) options: OrthtreeOptions,
 }
 
@@ -149,11 +147,6 @@ impl<P: Primitive> Orthtree<P> {
         &self.options
     }
 
-    /// The primitives that could not be placed (a NaN or infinite coordinate).
-    pub fn unplaced(&self) -> &[u32] {
-        &self.unplaced
-    }
-
     /// A node's children (2^D consecutive ids), or `None` for a leaf.
     pub fn children(&self, node: NodeId) -> Option<std::ops::Range<u32>> {
         let n = self.nodes[node.index()];
@@ -206,6 +199,6 @@ impl<P: Primitive> Orthtree<P> {
     pub(super) fn memory_bytes(&self) -> usize {
         self.prims.len() * size_of::<P>()
             + self.nodes.len() * size_of::<Node>()
-            + (self.refs.len() + self.unplaced.len()) * 4
+            + self.refs.len() * 4
     }
 }

@@ -28,9 +28,6 @@ impl<P: Primitive> Orthtree<P> {
         if !point.is_finite() || k == 0 {
             return probe.finish();
         }
-        for &i in &self.unplaced {
-            probe.test(i, observer);
-        }
         if self.nodes.is_empty() {
             return probe.finish();
         }

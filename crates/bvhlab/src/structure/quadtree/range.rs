@@ -28,15 +28,6 @@ impl<P: Primitive> Orthtree<P> {
                 cost,
             };
         }
-        for &i in &self.unplaced {
-            test_range(
-                (i, &self.prims[i as usize]),
-                shape,
-                &mut cost,
-                &mut found,
-                observer,
-            );
-        }
         let mut mailbox = Mailbox::new();
         let mut stack = Vec::new();
         if !self.nodes.is_empty() {

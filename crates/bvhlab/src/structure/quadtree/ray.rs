@@ -145,11 +145,6 @@ impl<P: Primitive> Orthtree<P> {
         visitor: &mut L,
         observer: &mut O,
     ) {
-        for &i in &self.unplaced {
-            if visitor.leaf(&[i], f64::INFINITY, observer).is_break() {
-                return;
-            }
-        }
         if self.nodes.is_empty() {
             return;
         }

@@ -2,7 +2,6 @@
 
 use super::build::{Split, child_mask};
 use super::layout::{MAX_DEPTH, Orthtree, child_box_at, child_count, split_point};
-use crate::structure::grid::probe::is_placeable;
 use crate::structure::stats::sah_cost_boxes;
 use crate::structure::{NodeId, Stats, ValidationError};
 use crate::{BoundingVolume, Primitive, Vector};
@@ -17,7 +16,7 @@ fn fail(message: String) -> Result<(), ValidationError> {
 
 impl<P: Primitive> Orthtree<P> {
     /// Nodes, leaves (empty ones included: the histogram's bucket 0 counts them), depth,
-    /// references (leaf entries plus the unplaced primitives, which every query tests),
+    /// references (leaf entries),
     /// memory, and the SAH cost with the cells' boxes as node regions.
     pub(super) fn tree_stats(&self) -> Stats {
         let cells = self.cells();
@@ -28,7 +27,7 @@ impl<P: Primitive> Orthtree<P> {
             max_depth: cells.iter().map(|c| c.depth as usize).max().unwrap_or(0),
             leaf_sizes: Stats::leaf_size_histogram(leaves),
             primitives: self.prims.len(),
-            references: self.refs.len() + self.unplaced.len(),
+            references: self.refs.len(),
             memory_bytes: self.memory_bytes(),
             sah_cost: sah_cost_boxes(cells.iter().map(|c| (c.bounds, c.prims.map(<[u32]>::len)))),
         }
@@ -36,19 +35,23 @@ impl<P: Primitive> Orthtree<P> {
 
     /// Checks the topology (every node reached once from the root, children after their
     /// parent, within the depth limit), that each child's box lies in its parent's, that the
-    /// leaves' lists partition the reference array, that the unplaced primitives are exactly
-    /// those with a non-finite coordinate, and that every leaf lists exactly the primitives
+    /// leaves' lists partition the reference array, that no primitive with a non-finite
+    /// coordinate is listed, and that every leaf lists exactly the primitives
     /// that share a point with it (descending from the root with the build's rule, and on
     /// moderate inputs also against every leaf independently).
     pub(super) fn check(&self) -> Result<(), ValidationError> {
         self.check_indices()?;
-        for (i, prim) in self.prims.iter().enumerate() {
-            if is_placeable(prim) == self.unplaced.binary_search(&(i as u32)).is_ok() {
-                return fail(format!("primitive {i}: wrongly (un)placed"));
-            }
+        if let Some(&i) = self
+            .refs
+            .iter()
+            .find(|&&i| !self.prims[i as usize].has_finite_coordinates())
+        {
+            return fail(format!(
+                "primitive {i} has a NaN or infinite coordinate but is listed"
+            ));
         }
         let placed: Vec<u32> = (0..self.prims.len() as u32)
-            .filter(|&i| is_placeable(&self.prims[i as usize]))
+            .filter(|&i| self.prims[i as usize].has_finite_coordinates())
             .collect();
         if self.nodes.is_empty() {
             return if placed.is_empty() && self.refs.is_empty() {
@@ -140,7 +143,7 @@ impl<P: Primitive> Orthtree<P> {
 
     /// What the walk below and every query take for granted, and a tree loaded from a file
     /// may break: the depth limit is [`MAX_DEPTH`] at most (the walks' stacks are sized by
-    /// the depth), the unplaced list is ascending and within the primitives, every reference
+    /// the depth), every reference
     /// names a primitive, and every inner node's children lie inside the node array.
     fn check_indices(&self) -> Result<(), ValidationError> {
         if self.options.max_depth > MAX_DEPTH {
@@ -148,14 +151,6 @@ impl<P: Primitive> Orthtree<P> {
                 "the depth limit {} is beyond {MAX_DEPTH}",
                 self.options.max_depth
             ));
-        }
-        if self.unplaced.windows(2).any(|w| w[0] >= w[1])
-            || self
-                .unplaced
-                .last()
-                .is_some_and(|&i| i as usize >= self.prims.len())
-        {
-            return fail("the unplaced list is not ascending or out of range".into());
         }
         if let Some(&i) = self.refs.iter().find(|&&i| i as usize >= self.prims.len()) {
             return fail(format!(

@@ -24,7 +24,7 @@
 use super::BuildPrim;
 use super::fast_bins::{AxisBins, Binner, Cheapest, LaneBox, lanes};
 use super::median::object_median;
-use crate::structure::bvh::layout::{BvhNode, is_indexable};
+use crate::structure::bvh::layout::BvhNode;
 use crate::structure::bvh::volume::NodeVolume;
 use crate::structure::bvh::{Bvh, BvhOptions};
 use crate::{Primitive, Vector};
@@ -41,7 +41,7 @@ impl Item {
     /// The item of input primitive `index`, or `None` when it cannot be indexed.
     #[inline]
     pub fn indexed<P: Primitive>(index: usize, prim: &P) -> Option<Self> {
-        is_indexable(prim).then(|| {
+        prim.has_finite_coordinates().then(|| {
             Self::of(&BuildPrim {
                 bounds: prim.bounds(),
                 centroid: prim.centroid(),

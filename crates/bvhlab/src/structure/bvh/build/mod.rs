@@ -40,7 +40,7 @@ pub(super) use parallel::{build_sah_box_parts_parallel, build_sah_boxes_parallel
 use self::job::{BuildPhase, BuildProgress};
 use self::sah::{SahBinning, SahCurve, SahScratch};
 use self::split_log::SplitRecord;
-use super::layout::{BvhNode, is_indexable};
+use super::layout::BvhNode;
 use super::volume::NodeVolume;
 use super::volume::fit_sliced::SlicedFit;
 use super::{Bvh, BvhOptions};
@@ -373,7 +373,7 @@ where
         let start = self.scanned;
         let end = start + budget.chunk(prims.len() - start);
         for (index, prim) in prims[start..end].iter().enumerate() {
-            if is_indexable(prim) {
+            if prim.has_finite_coordinates() {
                 self.items.push(BuildPrim {
                     bounds: prim.bounds(),
                     centroid: prim.centroid(),

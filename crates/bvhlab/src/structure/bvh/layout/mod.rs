@@ -7,9 +7,9 @@ pub mod gpu;
 mod stats;
 
 use super::BvhOptions;
+use crate::Primitive;
 use crate::structure::NodeId;
 use crate::volume::Aabb;
-use crate::{Primitive, Vector};
 
 /// One node of a [`Bvh`]: its bounding volume and where its children or primitives are.
 ///
@@ -137,9 +137,4 @@ impl<B, P: Primitive> Bvh<B, P> {
     pub fn skipped(&self) -> usize {
         self.prims.len() - self.leaf_ids.len()
     }
-}
-
-/// Whether a primitive can be indexed: all its vertices finite.
-pub(super) fn is_indexable<P: Primitive>(prim: &P) -> bool {
-    prim.vertices().all(Vector::is_finite)
 }

@@ -32,7 +32,6 @@ use search::{Item, Limits, Place};
 use splice::Subtree;
 
 use super::Bvh;
-use super::layout::is_indexable;
 use crate::structure::update::{Removed, UpdateError, check_index};
 use crate::volume::Aabb;
 use crate::{Primitive, Vector};
@@ -131,7 +130,7 @@ where
     /// Puts primitive `id` (already in `prims`) into the tree, if it can be indexed.
     fn link(&mut self, id: usize) {
         let prim = self.prims[id];
-        if !is_indexable(&prim) {
+        if !prim.has_finite_coordinates() {
             return;
         }
         let leaf = Subtree::leaf(self.leaf_volume(&[prim]), prim, id as u32);

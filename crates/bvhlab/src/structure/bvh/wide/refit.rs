@@ -4,7 +4,6 @@
 
 use super::layout::{Bvh4, Bvh4Node, WIDTH};
 use crate::Primitive;
-use crate::structure::bvh::layout::is_indexable;
 use crate::structure::bvh::refit::{RefitReport, bounds_of, check_same_primitives};
 use crate::structure::bvh::{BvhOptions, NodeVolume, RefitError};
 use crate::structure::stats::sah_cost;
@@ -31,7 +30,7 @@ impl<P: Primitive> Bvh4<P> {
             prims
                 .iter()
                 .enumerate()
-                .all(|(i, p)| indexed[i] == is_indexable(p))
+                .all(|(i, p)| indexed[i] == p.has_finite_coordinates())
         );
         for (slot, &id) in self.leaf_prims.iter_mut().zip(&self.leaf_ids) {
             *slot = prims[id as usize];

@@ -80,7 +80,7 @@ impl<P: Primitive> Bvh4<P> {
                     "leaf slot {slot} names primitive {id}, out of range"
                 ));
             }
-            if !prim.vertices().all(Vector::is_finite) {
+            if !prim.has_finite_coordinates() {
                 return fail(format!("primitive {id} is non-finite but indexed"));
             }
             if let Err(why) = check_enclosed_by_vertices(prim) {

@@ -112,11 +112,6 @@ pub(crate) fn default_max_depth(n: usize, options: &KdTreeOptions) -> usize {
     (depth as usize).min(DEPTH_LIMIT)
 }
 
-/// Whether every coordinate of a box is finite.
-pub(crate) fn is_finite_box<V: Vector>(b: &Aabb<V>) -> bool {
-    b.min.is_finite() && b.max.is_finite()
-}
-
 /// The cell cut at `x_axis = split`: `[below, above]`.
 pub(crate) fn split_cell<V: Vector>(cell: &Aabb<V>, axis: usize, split: f32) -> [Aabb<V>; 2] {
     let (mut below, mut above) = (*cell, *cell);
@@ -175,7 +170,7 @@ impl<'a, P: Primitive, O: Observer<P::Point>> Builder<'a, P, O> {
     ) -> (Self, Vec<u32>, Aabb<P::Point>) {
         let bounds: Vec<Aabb<P::Point>> = prims.iter().map(Primitive::bounds).collect();
         let refs: Vec<u32> = (0..prims.len() as u32)
-            .filter(|&i| is_finite_box(&bounds[i as usize]))
+            .filter(|&i| prims[i as usize].has_finite_coordinates())
             .collect();
         let cell = refs.iter().fold(Aabb::EMPTY, |c: Aabb<P::Point>, &r| {
             let b = &bounds[r as usize];
