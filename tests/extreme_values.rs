@@ -12,7 +12,7 @@
 //! within the query's bounds.
 //!
 //! 256 cases per test by default (about 2 s for the file in the test profile);
-//! `PROPTEST_CASES=2000 cargo test -p bvhlab-tests --test extreme_values` searches longer.
+//! `PROPTEST_CASES=2000 cargo test -p bvhlab-tests --test all extreme_values` searches longer.
 
 use std::fmt::Debug;
 use std::sync::mpsc::{self, RecvTimeoutError};

@@ -3,7 +3,7 @@
 //! heat map is traced again for the moved mesh. The model is driven with actions, the heat map
 //! in the headless harness (no GPU there: the CPU traces it).
 
-mod common;
+use crate::common;
 
 use bvhlab::RayCast;
 use bvhlab::glam::Vec3;

@@ -2,7 +2,7 @@
 //! reloads, and the scripting API driven command by command through real frames. What the
 //! tests change themselves, they change with actions, as the panels do.
 
-mod common;
+use crate::common;
 
 use bvhlab::glam::{Vec2, Vec3};
 use bvhlab_app::LabApp;

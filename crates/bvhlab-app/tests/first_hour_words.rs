@@ -17,7 +17,7 @@ use egui::{Color32, Pos2, Shape};
 use egui_kittest::Harness;
 use egui_kittest::kittest::{NodeT, Queryable};
 
-mod common;
+use crate::common;
 use common::*;
 
 const SPHERES: [FitKind; 3] = [

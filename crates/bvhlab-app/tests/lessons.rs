@@ -3,7 +3,7 @@
 //! do) and is reached by the step's solution; a bad lesson file is refused with its line;
 //! and a lesson opens from the page's address and in the Lessons panel.
 
-mod common;
+use crate::common;
 
 use bvhlab_app::embed::StartParams;
 use bvhlab_app::lessons::{self, format};

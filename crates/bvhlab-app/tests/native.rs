@@ -1,7 +1,7 @@
 //! The native window: its state kept in a file, and a panicking frame caught (the window
 //! stays; the lab goes back to its last saved state and says so).
 
-mod common;
+use crate::common;
 
 use bvhlab::glam::Vec2;
 use bvhlab_app::model::lab2d::RayHandles;

@@ -9,7 +9,7 @@
 //! The labs here are set up, and files and links opened, with actions
 //! ([`LabApp::apply`]), as the panels and the page do.
 
-mod common;
+use crate::common;
 
 use base64::Engine as _;
 use base64::engine::general_purpose::URL_SAFE_NO_PAD;

@@ -3,7 +3,7 @@
 //! both themes, the SAH plot's axis name clear of its numbers from a node's first frame, and
 //! the "Step through" panel usable at 800x500 (a lab embedded in a course page).
 
-mod common;
+use crate::common;
 
 use bvhlab::glam::Vec2;
 use bvhlab::structure::SplitMethod;

@@ -10,7 +10,7 @@ use bvhlab_app::pseudocode::describe;
 use bvhlab_app::pseudocode::{Task, Variant};
 use egui_kittest::Harness;
 
-mod common;
+use crate::common;
 use common::*;
 
 /// The "Step through" panel's counters: (name, this step, so far, total, brute force).

@@ -14,7 +14,7 @@ use egui::{Key, Pos2, pos2, vec2};
 use egui_kittest::Harness;
 use egui_kittest::kittest::{NodeT, Queryable};
 
-mod common;
+use crate::common;
 use common::*;
 
 /// Brute force over the app's current scene, built here from the scene (not the app's copy).

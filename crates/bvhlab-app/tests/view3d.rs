@@ -1,7 +1,7 @@
 //! The 3D half of the lab, driven headless as a student drives it (no GPU here: the view's
 //! drawing is tested on lavapipe in `render3d.rs`; this checks what the view does).
 
-mod common;
+use crate::common;
 
 use bvhlab::RayCast;
 use bvhlab::Triangle3;

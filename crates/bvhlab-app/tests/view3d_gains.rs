@@ -2,7 +2,7 @@
 //! the view, linked to it both ways; a second structure to compare with, side by side on the
 //! same question; and the view exported as SVG for slides.
 
-mod common;
+use crate::common;
 
 use bvhlab::RayCast;
 use bvhlab::glam::{Vec2, Vec3};

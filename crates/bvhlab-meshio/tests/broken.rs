@@ -2,7 +2,7 @@
 //! name and names the fault. Then every valid test file cut at every length, and with bytes
 //! changed at random, must give `Ok` or `Err` but never panic.
 
-mod support;
+use crate::support;
 
 use std::fmt::Write as _;
 

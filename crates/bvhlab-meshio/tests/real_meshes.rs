@@ -2,7 +2,7 @@
 //! loads through `load` as the core's OBJ reader reads it, and the same triangles written by
 //! the tests as PLY (three encodings), STL (binary and ASCII) and GLB load back the same.
 
-mod support;
+use crate::support;
 
 use std::time::Instant;
 

@@ -3,7 +3,7 @@
 //! ASCII STL (one solid or several, the `solid` header trap), and glTF as JSON and as GLB with
 //! a tree of node transforms, instancing, mirroring, strips, fans, and every index type.
 
-mod support;
+use crate::support;
 
 use std::fmt::Write as _;
 

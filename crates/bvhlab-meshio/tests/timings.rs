@@ -1,8 +1,8 @@
-//! Timings, not tests: run with `cargo test -p bvhlab-meshio --test timings -- --ignored
+//! Timings, not tests: run with `cargo test -p bvhlab-meshio --test all timings -- --ignored
 //! --nocapture`. They print how long the large built-in mesh takes to make and how long the
 //! ogre (124,008 triangles) takes to load from OBJ, PLY and STL, each the best of three.
 
-mod support;
+use crate::support;
 
 use std::time::{Duration, Instant};
 

@@ -1,7 +1,7 @@
 //! BSP trees (random autopartition) checked against brute force on random, degenerate and real
 //! scenes in 2D and 3D, with rays that start on and run inside splitting planes.
 
-mod kdtree_bsp_common;
+use crate::kdtree_bsp_common;
 
 use bvhlab::glam::{Vec2, Vec3};
 use bvhlab::prelude::*;

@@ -11,7 +11,7 @@
 //! The any hit must be found exactly when the binary tree finds one, and be a true hit within
 //! `t_max`; which primitive it is may differ (the binary walk visits nearer boxes first).
 
-mod bvh_common;
+use crate::bvh_common;
 
 use bvh_common::scenes::degenerate;
 use bvh_common::{TestPrim, plausible_hit, points_for, random_vector, rays_for, rng, scene_box};

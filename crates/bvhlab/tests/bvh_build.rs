@@ -1,7 +1,7 @@
 //! Construction: the build events, the SAH cost curves, the options, the stats, and the node
 //! layout.
 
-mod bvh_common;
+use crate::bvh_common;
 
 use bvh_common::rng;
 use bvh_common::scenes::random;

@@ -4,9 +4,9 @@
 //! exactly at its total.
 //!
 //! The `#[ignore]`d test at the end measures a million triangles:
-//! `cargo test -p bvhlab --test bvh_build_job -- --ignored --nocapture`.
+//! `cargo test -p bvhlab --test all bvh_build_job -- --ignored --nocapture`.
 
-mod bvh_common;
+use crate::bvh_common;
 
 use std::time::{Duration, Instant};
 

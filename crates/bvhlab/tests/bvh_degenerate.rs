@@ -2,7 +2,7 @@
 //! huge coordinates, primitives with NaN or infinite coordinates. Every tree kind and builder
 //! must build, validate, and answer exactly as brute force.
 
-mod bvh_common;
+use crate::bvh_common;
 
 use bvh_common::scenes::degenerate;
 use bvh_common::{Budget, TestPrim, check_collide, check_scene, rng};

@@ -2,7 +2,7 @@
 //! the stack dictates, children are queued nearer first, pruned nodes say why, primitive
 //! tests come from the leaf just entered, and the costs count the events.
 
-mod bvh_common;
+use crate::bvh_common;
 
 use bvh_common::scenes::random;
 use bvh_common::{TestPrim, assert_counts, rng};

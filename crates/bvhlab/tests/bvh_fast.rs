@@ -4,7 +4,7 @@
 //! scales, on rays parallel to the axes, and on the real meshes. The unlogged build (which costs only the planes that can win) must make the
 //! logged build's tree.
 
-mod bvh_common;
+use crate::bvh_common;
 
 use bvh_common::{TestPrim, rays_for, rng, shared_mesh};
 use bvhlab::glam::Vec3;

@@ -6,7 +6,7 @@
 //! fallback), flat and line-like scenes (axes that cannot be binned), every bin count, leaf
 //! size and depth limit.
 
-mod bvh_common;
+use crate::bvh_common;
 
 use bvh_common::scenes::{degenerate, random};
 use bvh_common::{rng, shared_mesh, tree_bits};

@@ -2,7 +2,7 @@
 //! rays (random, aimed at vertices, axis-parallel along vertex coordinates) and nearest and
 //! range queries exactly as brute force. Skipped, with a message, when the folder is absent.
 
-mod bvh_common;
+use crate::bvh_common;
 
 use std::path::PathBuf;
 

@@ -11,7 +11,7 @@
 //! fallback), one flat axis, signed zeros, and leaves forced by the depth limit.
 #![cfg(feature = "parallel")]
 
-mod bvh_common;
+use crate::bvh_common;
 
 use bvh_common::scenes::{degenerate, random};
 use bvh_common::{TestPrim, TreeBits, rng, shared_mesh, tree_bits};

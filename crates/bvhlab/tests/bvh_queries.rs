@@ -1,7 +1,7 @@
 //! Every query of every tree kind (AABB, sphere, OBB) and every builder agrees with brute
 //! force on seeded random scenes: segments and points in 2D, triangles and points in 3D.
 
-mod bvh_common;
+use crate::bvh_common;
 
 use bvh_common::scenes::random;
 use bvh_common::{Budget, TestPrim, check_collide, check_scene, rng};

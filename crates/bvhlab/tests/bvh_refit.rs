@@ -4,7 +4,7 @@
 //! query as brute force on the moved primitives; the SAH cost is reported, and
 //! `needs_rebuild` tells a scrambled tree from a translated one.
 
-mod bvh_common;
+use crate::bvh_common;
 
 use std::cell::RefCell;
 

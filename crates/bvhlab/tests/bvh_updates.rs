@@ -5,7 +5,7 @@
 //! third of its triangles, the depth limit, errors, and the reinsertion pass that must
 //! never raise the SAH cost.
 
-mod bvh_common;
+use crate::bvh_common;
 
 use bvh_common::{Budget, TestPrim, check_tree, random_vector, rng, shared_mesh};
 use bvhlab::Vector;

@@ -6,7 +6,7 @@
 //! grown and moved far from the origin, on duplicated triangles (ties go to the lower
 //! index), and on seeded random scenes at every scale.
 
-mod bvh_common;
+use crate::bvh_common;
 
 use bvh_common::{TestPrim, rng, shared_mesh};
 use bvhlab::glam::Vec3;

@@ -2,7 +2,7 @@
 //! scenes, with rays that start on, run along and cross cell boundaries; and the grid's own
 //! promises: exact cell lists, mailboxing, the hit-inside-the-cell rule, the resolution rule.
 
-mod grid_support;
+use crate::grid_support;
 
 use bvhlab::RayCast;
 use bvhlab::glam::{Vec2, Vec3};

@@ -4,7 +4,7 @@
 //! box), holds what a plain `Vec` holds after the same steps, answers every query as brute
 //! force, and has edited no cell but those the primitive covered or now covers.
 
-mod grid_support;
+use crate::grid_support;
 
 use bvhlab::glam::{Vec2, Vec3};
 use bvhlab::structure::{Removed, UpdateError};

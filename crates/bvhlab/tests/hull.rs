@@ -2,9 +2,7 @@
 //! 3D. The building checks are in `hull/build.rs`, the queries in `hull/queries.rs`; shared
 //! point sets and checks are here.
 
-#[path = "hull/build.rs"]
 mod build;
-#[path = "hull/queries.rs"]
 mod queries;
 
 use std::collections::HashMap;

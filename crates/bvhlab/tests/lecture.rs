@@ -7,7 +7,7 @@
 //! and against properties that need no re-derivation (costs count the events, a queued child
 //! is the next node entered, a left subtree is finished before its right sibling is entered).
 
-mod bvh_common;
+use crate::bvh_common;
 
 use std::path::PathBuf;
 

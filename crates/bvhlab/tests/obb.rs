@@ -1,7 +1,7 @@
 //! Oriented boxes through the public API: the PCA fit (containment, degenerate and symmetric
 //! sets, recovering a known box) and the cheap queries (measures, `aabb`, `merge`).
 
-mod obb_common;
+use crate::obb_common;
 
 use std::f32::consts::TAU;
 

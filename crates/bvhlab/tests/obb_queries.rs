@@ -2,7 +2,7 @@
 //! sampling along the ray with `contains`, the `Aabb` slab test, and brute force over a fine
 //! sample of the box.
 
-mod obb_common;
+use crate::obb_common;
 
 use bvhlab::glam::{Vec2, Vec3};
 use bvhlab::prelude::*;

@@ -3,7 +3,7 @@
 //! and the tree's own promises: termination on inseparable input, front-to-back order, the
 //! hit-inside-the-leaf rule, exact leaf lists.
 
-mod grid_support;
+use crate::grid_support;
 
 use bvhlab::RayCast;
 use bvhlab::glam::{Vec2, Vec3};

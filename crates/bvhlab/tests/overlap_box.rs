@@ -3,7 +3,7 @@
 //! and the identities an exact test must keep (a box split in two loses nothing; the corner
 //! order, the axis order and mirroring change nothing).
 
-mod overlap_common;
+use crate::overlap_common;
 
 use bvhlab::glam::{Vec2, Vec3};
 use bvhlab::prelude::*;

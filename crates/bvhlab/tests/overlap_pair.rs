@@ -3,7 +3,7 @@
 //! watertight ray test along edges, and the identities an exact test must keep (splitting a
 //! primitive in two loses nothing; order of arguments and corners changes nothing).
 
-mod overlap_common;
+use crate::overlap_common;
 
 use bvhlab::glam::{Vec2, Vec3};
 use bvhlab::prelude::*;

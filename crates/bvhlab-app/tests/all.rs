@@ -1,0 +1,27 @@
+//! The lab's integration tests in one test binary: each file beside this one is a module, so
+//! eframe, wgpu and `egui_kittest` are linked once rather than once per file (issue 28). One
+//! file's tests: `cargo test -p bvhlab-app --test all persist::`.
+
+mod common;
+
+mod deform3d;
+mod embed;
+mod export;
+mod first_hour_words;
+mod heatmap;
+mod layout;
+mod lessons;
+mod native;
+mod persist;
+mod playback;
+mod predict;
+mod pseudocode;
+mod readable;
+mod refit;
+mod render3d;
+mod shaders;
+mod stepping;
+mod tree_diagram;
+mod ui;
+mod view3d;
+mod view3d_gains;
