@@ -193,7 +193,7 @@ fn side_panels(cx: &mut Cx<'_>, ui: &mut egui::Ui, width: f32) {
 
 /// The controls and "Step through" as two tabs of one panel.
 fn side_tabs(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
-    use crate::ui_state::SideTab;
+    use crate::address::SideTab;
     ui.horizontal(|ui| {
         let tab = &mut cx.ui.panels.tab;
         ui.selectable_value(tab, SideTab::Controls, "Lessons and controls");

@@ -23,6 +23,7 @@
 //!   address parameters and the scripting API for course pages; [`report`]: the lab's state
 //!   for the page; [`export`]: SVG and PNG for slides; `native` and `web`: the two shells.
 
+pub mod address;
 pub mod app;
 pub mod embed;
 pub mod export;

@@ -5,58 +5,10 @@
 
 use bvhlab::NodeId;
 
+pub use crate::address::{PanelsShown, SideTab};
 use crate::frame_clock::FrameClock;
 use crate::model::{Action, Lab};
 use crate::tree_diagram::TreeDiagram;
-
-/// Which panels are shown beside the view.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[allow(clippy::struct_excessive_bools)] // one switch per panel
-pub struct PanelsShown {
-    /// The controls (left).
-    pub controls: bool,
-    /// "Step through" (right).
-    pub stepper: bool,
-    /// The tree diagram below the 2D canvas.
-    pub tree: bool,
-    /// The tree diagram below the 3D view (off at first: the view keeps the room).
-    pub tree3d: bool,
-    /// In a window too narrow for both side panels (a laptop, an embed), they share one,
-    /// as tabs: the one shown.
-    pub tab: SideTab,
-}
-
-/// The side panel shown when the controls and "Step through" share one (narrow windows).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum SideTab {
-    /// The lessons and the controls.
-    #[default]
-    Controls,
-    /// "Step through": playback, Predict, the counters and the pseudocode.
-    Stepper,
-}
-
-impl PanelsShown {
-    /// Whether the tree diagram is shown below the view of `dimension`.
-    pub fn tree_in(&self, dimension: crate::model::Dimension) -> bool {
-        match dimension {
-            crate::model::Dimension::Two => self.tree,
-            crate::model::Dimension::Three => self.tree3d,
-        }
-    }
-}
-
-impl Default for PanelsShown {
-    fn default() -> Self {
-        Self {
-            controls: true,
-            stepper: true,
-            tree: true,
-            tree3d: false,
-            tab: SideTab::Controls,
-        }
-    }
-}
 
 /// The UI's own state.
 #[derive(Default)]

@@ -164,7 +164,7 @@ fn a_wrong_name_in_the_address_is_answered_with_the_names_the_lab_knows() {
 
 #[test]
 fn percent_escapes_are_decoded_as_browsers_do() {
-    use bvhlab_app::embed::params::decode;
+    use bvhlab_app::address::decode;
     assert_eq!(decode("a%20b+c"), "a b c");
     assert_eq!(decode("%E2%9C%93"), "✓");
     assert_eq!(decode("100%"), "100%", "a cut escape stays");

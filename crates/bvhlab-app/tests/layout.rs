@@ -71,6 +71,48 @@ fn the_model_uses_neither_egui_nor_the_views() {
     }
 }
 
+/// The lines of code (not comments) of every file under `src/<dir>`, with where they are.
+fn code_lines(dir: &str) -> Vec<(String, String)> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("src").join(dir);
+    let mut out = Vec::new();
+    for file in sources(&root) {
+        let text = std::fs::read_to_string(&file).expect("readable");
+        for (i, line) in text.lines().enumerate() {
+            if !line.trim_start().starts_with("//") {
+                out.push((format!("{}:{}", file.display(), i + 1), line.to_owned()));
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn the_address_sits_below_the_lessons_and_the_embedding() {
+    // The address's words (`StartParams`, the panels) are read by `lessons/` (each step's
+    // setup) and by `embed/` (what a page opens with): they may use neither, nor the views,
+    // nor egui, so that the lab's model builds without them. The scene format's names
+    // (`persist`) they share with scene files.
+    let lines = code_lines("address");
+    assert!(
+        lines.len() > 100,
+        "the address's code: {} lines",
+        lines.len()
+    );
+    let below = VIEWS.into_iter().filter(|view| *view != "crate::persist");
+    let forbidden: Vec<&str> = ["crate::lessons", "egui", "eframe", "wgpu"]
+        .into_iter()
+        .chain(below)
+        .collect();
+    for (at, line) in lines {
+        for &word in &forbidden {
+            assert!(
+                !line.contains(word),
+                "{at}: the address uses {word}: {line}"
+            );
+        }
+    }
+}
+
 #[test]
 fn no_source_file_is_over_500_lines() {
     let crates = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");

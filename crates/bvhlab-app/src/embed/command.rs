@@ -295,6 +295,6 @@ fn vec3(what: &str, n: &[f64]) -> Result<Vec3, String> {
 /// Finite numbers within the lab's range, as `f32`.
 fn checked(what: &str, n: &[f64]) -> Result<Vec<f32>, String> {
     n.iter()
-        .map(|&x| super::coordinate(&format!("the {what}"), x))
+        .map(|&x| crate::address::coordinate(&format!("the {what}"), x))
         .collect()
 }

@@ -1,5 +1,6 @@
 //! Embedding the lab in a course page: the address's parameters choose what it opens with
-//! ([`params`]), and the page scripts it with `postMessage` ([`command`], [`Scripting`]).
+//! ([`crate::address`], opened by [`StartParams::apply`] here), and the page scripts it with
+//! `postMessage` ([`command`], [`Scripting`]).
 //!
 //! # The scripting API
 //! The page posts `{bvhlab: "command", id, command: {type: "set-ray", ...}}` to the lab's
@@ -16,16 +17,15 @@
 #[cfg(target_arch = "wasm32")]
 pub mod browser;
 pub mod command;
-pub mod params;
 pub mod size;
 
 use std::collections::VecDeque;
 
+pub use crate::address::{PARAMETERS, StartParams};
 pub use command::Command;
-pub use params::{PARAMETERS, StartParams};
 
 use crate::LabApp;
-use crate::model::Lab;
+use crate::model::{Action, Lab, LessonAction};
 
 /// The longest command id echoed, in characters of JSON.
 const MAX_ID_CHARS: usize = 256;
@@ -71,7 +71,7 @@ pub fn start(fragment: Option<&str>, params: &StartParams, saved: Option<&str>) 
     }
     let message = (!problems.is_empty()).then(|| sentences(&problems));
     if message.is_some() {
-        let _ = lab.apply(crate::model::Action::SetMessage(message.clone()));
+        let _ = lab.apply(Action::SetMessage(message.clone()));
     }
     let mut app = LabApp::new(lab);
     if let Some(panels) = params.panels {
@@ -84,16 +84,24 @@ pub fn start(fragment: Option<&str>, params: &StartParams, saved: Option<&str>) 
     }
 }
 
-/// A coordinate from a page (address or command), or why the lab cannot take it: it must be
-/// finite and within ±[`MAX_COORD`](crate::persist::MAX_COORD), as in scene files.
-fn coordinate(what: &str, x: f64) -> Result<f32, String> {
-    let max = crate::persist::MAX_COORD;
-    if x.is_finite() && x.abs() <= f64::from(max) {
-        Ok(x as f32)
-    } else {
-        Err(format!(
-            "{what} has {x}; numbers must be finite and within ±{max:e}"
-        ))
+impl StartParams {
+    /// Puts what the parameters ask for into `lab` (a fresh one), and returns what could
+    /// not be used, one sentence each. (The panels are the UI's: the caller shows them.) A
+    /// lesson opens after the rest, at `step=` (1 is its first step).
+    pub fn apply(&self, lab: &mut Lab) -> Vec<String> {
+        let mut problems = lab.apply_setup(&self.setup(), "the address");
+        if let Some(name) = &self.lesson {
+            let step = self.step.unwrap_or(1).max(1) - 1;
+            match crate::lessons::find(name) {
+                Ok(lesson) => {
+                    if let Err(e) = lab.apply(Action::Lesson(LessonAction::Open { lesson, step })) {
+                        problems.push(format!("the address: {e}"));
+                    }
+                }
+                Err(e) => problems.push(format!("the address's lesson: {e}")),
+            }
+        }
+        problems
     }
 }
 

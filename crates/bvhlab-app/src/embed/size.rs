@@ -8,8 +8,8 @@
 //! changes when the student shows or hides panels (the status line's buttons) or switches
 //! between 2D and 3D (the tree diagram has its own switch in each).
 
+use crate::address::PanelsShown;
 use crate::model::Dimension;
-use crate::ui_state::PanelsShown;
 
 /// With the controls or "Step through" beside the view, in CSS pixels.
 pub const WITH_PANELS: u32 = 720;

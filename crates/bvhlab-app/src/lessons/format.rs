@@ -5,7 +5,7 @@ use serde::Deserialize;
 use toml::Spanned;
 
 use super::goal_text;
-use crate::embed::params::StartParams;
+use crate::address::StartParams;
 use crate::model::{Lesson, LessonStep};
 
 /// A lesson file as written.

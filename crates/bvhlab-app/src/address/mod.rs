@@ -1,12 +1,19 @@
 //! The page address's parameters (`index.html?preset=kd-tree&structure=kd-tree&ray=...`): how
-//! a course page chooses what an embedded lab opens with. Every parameter is listed in
-//! [`PARAMETERS`]; a value the lab cannot use, or a parameter it does not know, is named in
-//! the status line and the rest still applies.
+//! a course page chooses what an embedded lab opens with, and the words a lesson's step
+//! writes its setup in. Every parameter is listed in [`PARAMETERS`]; a value the lab cannot
+//! use, or a parameter it does not know, is named in the status line and the rest still
+//! applies.
+//!
+//! The vocabulary sits below its two readers: `lessons/` reads its steps' setups with it, and
+//! `embed/` opens the lab the address asks for (`StartParams::apply`, which also opens the
+//! lesson it names, is there). It uses only the model and the scene format's names.
 
+pub mod panels;
+
+use crate::model::Setup;
 use crate::model::presets::Preset;
-use crate::model::{Action, Lab, LessonAction, Setup};
 use crate::persist::{STORAGE_KEY, SplitName, StructureName, TaskName, VariantName};
-pub use crate::ui_state::PanelsShown as Panels;
+pub use panels::{PanelsShown, PanelsShown as Panels, SideTab};
 
 /// The parameters the lab reads, with what each does (the README's table is this list).
 pub const PARAMETERS: [(&str, &str); 17] = [
@@ -121,38 +128,6 @@ pub struct StartParams {
     pub problems: Vec<String>,
 }
 
-/// The panels named in `panels=`.
-fn parse_panels(value: &str) -> Result<Panels, String> {
-    {
-        let mut panels = Panels {
-            controls: false,
-            stepper: false,
-            tree: false,
-            tree3d: false,
-            tab: crate::ui_state::SideTab::Controls,
-        };
-        for name in value.split(',').map(str::trim).filter(|n| !n.is_empty()) {
-            match name {
-                "controls" => panels.controls = true,
-                "stepper" => panels.stepper = true,
-                "tree" => {
-                    panels.tree = true;
-                    panels.tree3d = true;
-                }
-                other => {
-                    return Err(unknown(
-                        "panels",
-                        "panel",
-                        other,
-                        &["controls", "stepper", "tree"],
-                    ));
-                }
-            }
-        }
-        Ok(panels)
-    }
-}
-
 /// The longest value read, in characters (an address can be long; a status line cannot).
 const MAX_VALUE_CHARS: usize = 400;
 
@@ -241,7 +216,7 @@ impl StartParams {
                     )
                 })?);
             }
-            "panels" => self.panels = Some(parse_panels(value)?),
+            "panels" => self.panels = Some(panels::parse(value)?),
             "lab" => self.lab = Some(value.to_owned()),
             "origin" => self.origins.push(origin(value)?),
             "fresh" => self.fresh = value == "1" || value == "true",
@@ -334,30 +309,24 @@ impl StartParams {
             },
         }
     }
+}
 
-    /// Puts what the parameters ask for into `lab` (a fresh one), and returns what could
-    /// not be used, one sentence each. (The panels are the UI's: the caller shows them.) A
-    /// lesson opens after the rest, at `step=` (1 is its first step).
-    pub fn apply(&self, lab: &mut Lab) -> Vec<String> {
-        let mut problems = lab.apply_setup(&self.setup(), "the address");
-        if let Some(name) = &self.lesson {
-            let step = self.step.unwrap_or(1).max(1) - 1;
-            match crate::lessons::find(name) {
-                Ok(lesson) => {
-                    if let Err(e) = lab.apply(Action::Lesson(LessonAction::Open { lesson, step })) {
-                        problems.push(format!("the address: {e}"));
-                    }
-                }
-                Err(e) => problems.push(format!("the address's lesson: {e}")),
-            }
-        }
-        problems
+/// A coordinate from a page (address or command), or why the lab cannot take it: it must be
+/// finite and within ±[`MAX_COORD`](crate::persist::MAX_COORD), as in scene files.
+pub(crate) fn coordinate(what: &str, x: f64) -> Result<f32, String> {
+    let max = crate::persist::MAX_COORD;
+    if x.is_finite() && x.abs() <= f64::from(max) {
+        Ok(x as f32)
+    } else {
+        Err(format!(
+            "{what} has {x}; numbers must be finite and within ±{max:e}"
+        ))
     }
 }
 
 /// What the address's `parameter` says when its `value` names no `kind` the lab has:
 /// `the address's structure: no structure named "kdtree"; try kd-tree, aabb-tree, ...`.
-fn unknown(parameter: &str, kind: &str, value: &str, names: &[&str]) -> String {
+pub(crate) fn unknown(parameter: &str, kind: &str, value: &str, names: &[&str]) -> String {
     format!(
         "the address's {parameter}: {}",
         crate::persist::no_such_name(kind, value, names)
@@ -375,7 +344,7 @@ fn numbers(what: &str, value: &str, counts: &[usize]) -> Result<Vec<f32>, String
                     short(text)
                 )
             })?;
-            super::coordinate(&format!("the address's {what}"), x)
+            coordinate(&format!("the address's {what}"), x)
         })
         .collect::<Result<Vec<f32>, String>>()?;
     if counts.contains(&list.len()) {
