@@ -22,28 +22,47 @@
 //! - [`persist`]: scene files, share links and the state kept across reloads; [`embed`]:
 //!   address parameters and the scripting API for course pages; [`report`]: the lab's state
 //!   for the page; [`export`]: SVG and PNG for slides; `native` and `web`: the two shells.
+//!
+//! The feature `gui` (on by default) is the lab itself: egui, eframe and wgpu, and every
+//! module above that draws. Without it the crate is the lab's model alone: [`model`],
+//! [`address`], [`lessons`], [`pseudocode`] and [`persist`] (files, links, saved state), which
+//! the fuzz targets build (`fuzz/`: instrumented, eframe and wgpu would be most of the build).
 
 pub mod address;
+#[cfg(feature = "gui")]
 pub mod app;
+#[cfg(feature = "gui")]
 pub mod embed;
+#[cfg(feature = "gui")]
 pub mod export;
+#[cfg(feature = "gui")]
 pub mod frame_clock;
+#[cfg(feature = "gui")]
 pub mod lab2d;
+#[cfg(feature = "gui")]
 pub mod lab3d;
 pub mod lessons;
 pub mod model;
-#[cfg(not(target_arch = "wasm32"))]
+#[cfg(all(feature = "gui", not(target_arch = "wasm32")))]
 pub mod native;
+#[cfg(feature = "gui")]
 pub mod paint;
+#[cfg(feature = "gui")]
 pub mod panels;
 pub mod persist;
 pub mod pseudocode;
+#[cfg(feature = "gui")]
 pub mod render3d;
+#[cfg(feature = "gui")]
 pub mod report;
+#[cfg(feature = "gui")]
 pub mod theme;
+#[cfg(feature = "gui")]
 pub mod tree_diagram;
+#[cfg(feature = "gui")]
 pub mod ui_state;
-#[cfg(target_arch = "wasm32")]
+#[cfg(all(feature = "gui", target_arch = "wasm32"))]
 pub mod web;
 
+#[cfg(feature = "gui")]
 pub use app::LabApp;

@@ -73,6 +73,7 @@ impl LessonReport {
 
     /// The message a course page receives: `{bvhlab: "progress", lesson, step, steps,
     /// goal_reached, goals_reached, goals}`.
+    #[cfg(feature = "gui")]
     pub fn progress_message(&self) -> String {
         crate::report::predict::progress_message(Some(self), None).unwrap_or_default()
     }

@@ -22,6 +22,7 @@
 //! garbage, deflate bombs, deep nesting) gives an error, never a panic or an unbounded
 //! allocation.
 
+#[cfg(feature = "gui")]
 mod actions;
 mod file;
 mod link;
@@ -32,6 +33,7 @@ mod state;
 mod state3d;
 mod storage;
 
+#[cfg(feature = "gui")]
 pub use actions::{
     copy_share_link, export_scene, import_scene, poll_imports, read_limit, share_link_text,
 };
