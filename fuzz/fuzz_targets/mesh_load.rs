@@ -25,6 +25,8 @@ const NAMES: [&str; 8] = [
     "notes.txt",
 ];
 
+bvhlab_fuzz::same_hash_keys_every_run!();
+
 fuzz_target!(|data: &[u8]| {
     let Some((&pick, bytes)) = data.split_first() else {
         return;

@@ -21,6 +21,8 @@ use bvhlab::{
 };
 use libfuzzer_sys::fuzz_target;
 
+bvhlab_fuzz::same_hash_keys_every_run!();
+
 fuzz_target!(|data: &[u8]| {
     let Some((&mode, rest)) = data.split_first() else {
         return;

@@ -16,6 +16,8 @@ use base64::engine::general_purpose::URL_SAFE_NO_PAD;
 use bvhlab_app::persist::from_fragment;
 use libfuzzer_sys::fuzz_target;
 
+bvhlab_fuzz::same_hash_keys_every_run!();
+
 fuzz_target!(|data: &[u8]| {
     let Some((&mode, rest)) = data.split_first() else {
         return;

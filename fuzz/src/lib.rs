@@ -37,3 +37,30 @@ pub fn accepted(state: SavedState) {
         panic!("the share link made for it does not open: {error}");
     }
 }
+
+/// Gives the hash maps of the code under test the same keys in every run, so that a run of
+/// `tests/fuzz.sh check` (a fixed seed, a fixed count of runs) explores the same inputs every
+/// time: the mesh readers, the lab's model and their dependencies keep `HashMap`s whose
+/// iteration order, and so the coverage libFuzzer steers by, follows their random keys.
+///
+/// It defines `getrandom`, the C library's call that the standard library asks for those keys
+/// (weakly linked, so the program's own definition is the one it calls), filling the buffer
+/// with zeros. Nothing under test needs random numbers otherwise; libFuzzer seeds its own
+/// generator from `-seed` or the clock, not from `getrandom`. One line in each target:
+/// `bvhlab_fuzz::same_hash_keys_every_run!();`.
+#[macro_export]
+macro_rules! same_hash_keys_every_run {
+    () => {
+        /// `getrandom(2)` of the C library, answered with zeros: see
+        /// `bvhlab_fuzz::same_hash_keys_every_run`.
+        #[unsafe(no_mangle)]
+        pub extern "C" fn getrandom(buf: *mut u8, len: usize, _flags: u32) -> isize {
+            if !buf.is_null() {
+                // SAFETY: the caller (the standard library, as the C function's contract
+                // says) hands a buffer of `len` writable bytes.
+                unsafe { ::std::ptr::write_bytes(buf, 0, len) };
+            }
+            len as isize
+        }
+    };
+}

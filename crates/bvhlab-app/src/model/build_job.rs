@@ -8,8 +8,8 @@
 
 use bvhlab::structure::bvh::{BvhBuild, NodeVolume};
 use bvhlab::{Aabb, BruteForce, Bvh, NodeOutline, Obb, SpatialIndex, Sphere, Stats, Vector};
-use web_time::Instant;
 
+use super::clock::Stopwatch;
 use super::dimension::{LabPrimitive, thousands};
 use super::structures::{BuildSettings, Built, StructureKind};
 
@@ -27,14 +27,14 @@ const MAX_TIMED_RUNS: u32 = 100;
 /// The browser's clock counts in steps of 0.1 ms, too coarse to time one refit or build of a
 /// few hundred segments, which take microseconds; `work` must give the same result every run.
 pub fn timed<T>(mut work: impl FnMut() -> T) -> (T, f64) {
-    let start = Instant::now();
+    let clock = Stopwatch::start();
     let mut runs = 1;
     let mut out = work();
-    while runs < MAX_TIMED_RUNS && start.elapsed().as_secs_f64() * 1e3 < MIN_TIMED_MS {
+    while runs < MAX_TIMED_RUNS && clock.elapsed_ms() < MIN_TIMED_MS {
         out = work();
         runs += 1;
     }
-    (out, start.elapsed().as_secs_f64() * 1e3 / f64::from(runs))
+    (out, clock.elapsed_ms() / f64::from(runs))
 }
 
 /// A lane's structure, built, with what the lab reads from it once.
@@ -220,9 +220,8 @@ where
     /// Works for about `budget_ms` milliseconds on `prims` (the primitives it was started
     /// on); the structure once it is finished.
     pub fn run(&mut self, prims: &[P], budget_ms: f64) -> Option<Structure<P>> {
-        let start = Instant::now();
+        let clock = Stopwatch::start();
         self.frames += 1;
-        let elapsed = |s: &Instant| s.elapsed().as_secs_f64() * 1e3;
         let done = match &mut self.sliced {
             None => {
                 // A build in one go: timed over repeats when it takes microseconds.
@@ -230,11 +229,11 @@ where
                 self.spent_ms += millis;
                 return Some(self.finish(built, prims));
             }
-            Some(Sliced::Sphere(job)) => slice(job, &start, budget_ms, &mut self.fraction),
-            Some(Sliced::Aabb(job)) => slice(job, &start, budget_ms, &mut self.fraction),
-            Some(Sliced::Obb(job)) => slice(job, &start, budget_ms, &mut self.fraction),
+            Some(Sliced::Sphere(job)) => slice(job, &clock, budget_ms, &mut self.fraction),
+            Some(Sliced::Aabb(job)) => slice(job, &clock, budget_ms, &mut self.fraction),
+            Some(Sliced::Obb(job)) => slice(job, &clock, budget_ms, &mut self.fraction),
         };
-        self.spent_ms += elapsed(&start);
+        self.spent_ms += clock.elapsed_ms();
         if !done {
             return None;
         }
@@ -266,7 +265,7 @@ where
 /// Steps a sliced build until it is done or the frame's budget is spent; whether it is done.
 fn slice<B, P>(
     job: &mut BvhBuild<B, P>,
-    start: &Instant,
+    clock: &Stopwatch,
     budget_ms: f64,
     fraction: &mut f32,
 ) -> bool
@@ -277,7 +276,7 @@ where
 {
     while !job.is_done() {
         *fraction = job.step(SLICE).fraction();
-        if start.elapsed().as_secs_f64() * 1e3 >= budget_ms {
+        if clock.elapsed_ms() >= budget_ms {
             break;
         }
     }

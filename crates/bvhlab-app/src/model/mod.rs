@@ -32,6 +32,7 @@ pub mod animation;
 mod apply;
 pub mod build_job;
 pub mod camera2d;
+pub mod clock;
 pub mod dimension;
 pub mod goal;
 pub mod half;
