@@ -5,8 +5,8 @@
 #   bash web/serve.sh [PORT]      (or PORT=... in the environment; default 8080)
 #
 # web/build.sh installs the wasm32 target and wasm-bindgen-cli (the version in Cargo.lock) when
-# they are missing: about 3 minutes once, then seconds. The first release build of the lab for
-# wasm32 takes about 2 minutes on 2 cores; after that a few seconds.
+# they are missing: about 2 minutes once on 2 cores, then seconds. The first release build of
+# the lab for wasm32 takes about 3½ minutes on 2 cores; after that a few seconds.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 

@@ -3,7 +3,8 @@
 # ensure_wasm_toolchain NAME: installs what building for the web needs when it is missing,
 # the wasm32-unknown-unknown target and the wasm-bindgen CLI of exactly the version of the
 # wasm-bindgen crate in Cargo.lock (the CLI refuses modules from another version). The
-# checks take a second when both are there; the CLI takes about 3 minutes to install. NAME
+# checks take a second when both are there; the CLI takes about 2 minutes to install on 2
+# cores. NAME
 # (the calling script) prefixes the error message.
 ensure_wasm_toolchain() {
   local name=$1 version
@@ -20,7 +21,7 @@ ensure_wasm_toolchain() {
     return 1
   fi
   if [ "$(wasm-bindgen --version 2>/dev/null || true)" != "wasm-bindgen $version" ]; then
-    echo "Installing wasm-bindgen-cli $version (about 3 minutes)..."
+    echo "Installing wasm-bindgen-cli $version (about 2 minutes)..."
     # No --locked: the CLI's own lock file pins a crate version some registries lack.
     cargo install wasm-bindgen-cli --version "$version"
   fi
