@@ -28,9 +28,9 @@
 # run and keeps what adds coverage in target/fuzz/new/<target>, never in fuzz/corpus. A crash
 # stops it with the input's path: fix the bug, then copy that input into fuzz/corpus/<target>
 # (named `regression-<what>`), so that `check` replays it from then on. `merge` adds to
-# fuzz/corpus/<target> only the explored inputs that add coverage (libFuzzer's -merge=1); commit
-# them. With nightly and cargo-fuzz, `cargo +nightly fuzz run <target>` works too (adds
-# AddressSanitizer).
+# fuzz/corpus/<target> the fewest explored inputs that keep all they add to its coverage
+# (libFuzzer's -set_cover_merge=1); commit them. With nightly and cargo-fuzz,
+# `cargo +nightly fuzz run <target>` works too (adds AddressSanitizer).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -164,7 +164,7 @@ for target in "${targets[@]}"; do
         scratch=$out/new/$target
         log=$out/logs/$target.merge.log
         before=$(find "$corpus" -type f | wc -l)
-        if [ -d "$scratch" ] && ! run_fuzzer -merge=1 "$corpus" "$scratch"; then
+        if [ -d "$scratch" ] && ! run_fuzzer -set_cover_merge=1 "$corpus" "$scratch"; then
             failed+=("$target")
             continue
         fi
