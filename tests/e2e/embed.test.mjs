@@ -76,12 +76,19 @@ async function violations(page) {
   return all;
 }
 
+/// Command ids as a page would make them with `Math.random()` (many digits, in [0, 1)), but
+/// the same in every run: the golden ratio's multiples, modulo 1.
+let idCount = 0;
+function nextId() {
+  idCount += 1;
+  return (idCount * 0.6180339887498949) % 1;
+}
+
 /// Sends one command to the lab in this page (the page scripts itself: same origin).
 async function command(page, body, timeoutMs = TIMEOUT_MS) {
   return page.evaluate(
-    ({ body, timeoutMs }) =>
+    ({ body, timeoutMs, id }) =>
       new Promise((resolve) => {
-        const id = Math.random();
         const timer = setTimeout(() => resolve({ timeout: true }), timeoutMs);
         window.addEventListener('message', function listen(event) {
           if (event.data?.bvhlab === 'reply' && event.data.id === id) {
@@ -92,7 +99,7 @@ async function command(page, body, timeoutMs = TIMEOUT_MS) {
         });
         window.postMessage({ bvhlab: 'command', id, command: body }, location.origin);
       }),
-    { body, timeoutMs },
+    { body, timeoutMs, id: nextId() },
   );
 }
 
@@ -169,9 +176,11 @@ async function originCheck(context, summary) {
     await waitForReport(frame, (r) => r.ready, TIMEOUT_MS, 'a cross-origin lab');
   }
   const answers = await page.evaluate(async (labOrigin) => {
+    let asked = 0;
     const ask = (frame) =>
       new Promise((resolve) => {
-        const id = Math.random();
+        asked += 1;
+        const id = (asked * 0.6180339887498949) % 1;
         const timer = setTimeout(() => resolve('no answer'), 4000);
         window.addEventListener('message', (event) => {
           if (event.data?.bvhlab === 'reply' && event.data.id === id) {
