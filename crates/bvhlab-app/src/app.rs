@@ -140,6 +140,9 @@ impl LabApp {
             ui.ctx().request_repaint();
         }
         self.report = Report::of(&self.lab, &self.ui);
+        if let Some(id) = self.ui.drawing {
+            crate::a11y::describe::drawing(ui.ctx(), id, self.lab.dimension(), &self.report);
+        }
     }
 
     /// Replaces the lab (a crash's recovery) and starts the UI afresh, keeping its renderer

@@ -28,6 +28,8 @@
 //! [`address`], [`lessons`], [`pseudocode`] and [`persist`] (files, links, saved state), which
 //! the fuzz targets build (`fuzz/`: instrumented, eframe and wgpu would be most of the build).
 
+#[cfg(feature = "gui")]
+pub mod a11y;
 pub mod address;
 #[cfg(feature = "gui")]
 pub mod app;

@@ -29,6 +29,10 @@ pub struct UiState {
     pub trees: Trees,
     /// The tree diagrams' area, when they are shown.
     pub tree_rect: Option<egui::Rect>,
+    /// The drawing's widget (the 2D canvas or the 3D view) this frame: the lab describes it
+    /// in words for screen readers ([`crate::a11y::describe`]), and its keys act while it
+    /// has the focus.
+    pub drawing: Option<egui::Id>,
     /// A PNG export waiting for its screenshot.
     pub pending_png: Option<crate::panels::export::PendingPng>,
     /// Frame timing.

@@ -4,6 +4,8 @@
 
 mod common;
 
+mod a11y;
+mod a11y_names;
 mod deform3d;
 mod embed;
 mod export;

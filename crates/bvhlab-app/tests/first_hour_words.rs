@@ -331,7 +331,7 @@ fn the_slab_buttons_stay_put_so_two_clicks_in_a_row_both_land() {
 fn changing_the_task_moves_nothing_below_it() {
     let mut h = lab();
     drag_test_ray(&mut h);
-    let transport = h.get_by_label("|<").rect();
+    let transport = h.get_by_label("first step").rect();
     for task in [
         "ray: any hit",
         "point: within a radius",
@@ -341,7 +341,7 @@ fn changing_the_task_moves_nothing_below_it() {
     ] {
         choose(&mut h, "step through", task);
         assert_eq!(
-            h.get_by_label("|<").rect(),
+            h.get_by_label("first step").rect(),
             transport,
             "choosing {task:?} moved the transport"
         );

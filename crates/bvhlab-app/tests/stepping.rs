@@ -116,21 +116,21 @@ fn step_through_a_ray(kind: StructureKind) {
     assert_eq!(h.state().lab().two().half.task, Task::FirstHit);
     let len = h.state().lab().two().half.lane.steps();
     assert!(len > 3, "{kind:?}: a real traversal has steps ({len})");
-    click(&mut h, "|<");
+    click(&mut h, "first step");
     check_step(&h, 0);
     for step in 1..=len.min(25) {
-        click(&mut h, ">");
+        click(&mut h, "next step");
         assert_eq!(h.state().lab().two().half.playback.step, step);
         check_step(&h, step);
     }
     // One step back undoes the last step.
     if len > 2 {
         let at = h.state().lab().two().half.playback.step;
-        click(&mut h, "<");
+        click(&mut h, "previous step");
         check_step(&h, at - 1);
     }
     // The end: the counters are the core's cost, and brute force tested every primitive.
-    click(&mut h, ">|");
+    click(&mut h, "last step");
     check_step(&h, len);
     let app = h.state();
     let rec = app.lab().two().half.lane.recorded().expect("recorded");
@@ -175,9 +175,9 @@ fn the_slides_version_and_the_full_one_are_both_counted() {
     click(&mut h, "the slides' version");
     assert_eq!(h.state().lab().two().half.variant, Variant::Lecture);
     let len = h.state().lab().two().half.lane.steps();
-    click(&mut h, "|<");
+    click(&mut h, "first step");
     for step in 1..=len.min(12) {
-        click(&mut h, ">");
+        click(&mut h, "next step");
         check_step(&h, step);
     }
     let rec = h
@@ -296,9 +296,9 @@ fn median_against_sah_compares_two_builds_of_one_structure() {
         "median and SAH build different trees on 200 random segments"
     );
     // Step into the build: the root's split is logged in both lanes.
-    click(&mut h, "|<");
+    click(&mut h, "first step");
     for _ in 0..3 {
-        click(&mut h, ">");
+        click(&mut h, "next step");
     }
     assert!(
         shows(&h, "SAH cost of each candidate plane"),
@@ -330,9 +330,9 @@ fn two_structures_step_together() {
         kinds,
         vec![StructureKind::SphereTree, StructureKind::AabbTree]
     );
-    click(&mut h, "|<");
+    click(&mut h, "first step");
     for step in 1..=6 {
-        click(&mut h, ">");
+        click(&mut h, "next step");
         for lane in h.state().lab().two().half.lanes() {
             let rec = lane.recorded().expect("both lanes recorded the same ray");
             let snap = lane.snapshot.as_ref().expect("a snapshot");
@@ -343,7 +343,7 @@ fn two_structures_step_together() {
             );
         }
     }
-    click(&mut h, ">|");
+    click(&mut h, "last step");
     for lane in h.state().lab().two().half.lanes() {
         let rec = lane.recorded().expect("recorded");
         assert!(rec.agrees(), "{:?}", lane.settings.kind);

@@ -99,7 +99,7 @@ fn labels(h: &Harness<'_, Diagram>) -> Vec<String> {
 
 /// The diagram's area: everything below the toolbar, inside the window.
 fn diagram_area(h: &Harness<'_, Diagram>) -> Rect {
-    let toolbar = h.get_by_label("Fit").rect();
+    let toolbar = h.get_by_label("Fit the tree diagram").rect();
     Rect::from_min_max(pos2(0.0, toolbar.bottom()), WINDOW.to_pos2())
 }
 
@@ -193,7 +193,7 @@ fn drag_pans_zoom_keeps_the_anchor_and_fit_restores() {
         "the rest spreads"
     );
 
-    h.get_by_label("Fit").click();
+    h.get_by_label("Fit the tree diagram").click();
     h.run();
     assert!(at(&h, a).distance(a0) < 1e-3);
     let last = h.state().outline.len() - 1;

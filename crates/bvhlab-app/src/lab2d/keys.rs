@@ -3,8 +3,9 @@
 //! across the middle of the view), and the arrow keys move it 10 screen points (1 with Shift).
 //! The handle picked is framed on the canvas, and the status line says which it is.
 //!
-//! The keys act only when no widget has the keyboard focus: a focused slider or number keeps
-//! its arrow keys, and Tab still walks the panels' widgets.
+//! The keys act when the canvas has the keyboard focus (a keyboard user tabs to it) or no
+//! widget has it: a focused slider or number keeps its arrow keys, and Tab still walks the
+//! panels' widgets.
 
 use bvhlab::glam::Vec2;
 
@@ -59,9 +60,10 @@ pub(super) fn handle_keys(
     ui: &egui::Ui,
     screen: &Screen,
     picked: &mut Option<KeyHandle>,
+    canvas: egui::Id,
 ) {
     let ctx = ui.ctx();
-    if ctx.text_edit_focused() || ctx.memory(|m| m.focused().is_some()) {
+    if ctx.text_edit_focused() || ctx.memory(|m| m.focused().is_some_and(|f| f != canvas)) {
         return;
     }
     let lab = cx.lab.two();

@@ -74,6 +74,7 @@ pub fn canvas(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
     let (response, painter) = ui.allocate_painter(ui.available_size(), Sense::click_and_drag());
     let halves = halves(response.rect, lab.half.compare.is_some());
     cx.ui.canvas.rect = response.rect;
+    cx.ui.drawing = Some(response.id);
     if lab.fit_pending && halves[0].is_positive() {
         let size = halves[0].size();
         cx.act(Action2d::FrameScene(Vec2::new(size.x, size.y)));
@@ -88,7 +89,7 @@ pub fn canvas(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
     pan_and_zoom(cx, ui, &response, &screen);
     input::handle_tool(cx, ui, &response, &screen);
     let mut picked = cx.ui.canvas.key_handle;
-    keys::handle_keys(cx, ui, &screen, &mut picked);
+    keys::handle_keys(cx, ui, &screen, &mut picked, response.id);
     cx.ui.canvas.key_handle = picked;
     if cx.ui.link_hover
         && let (Some(i), Some(p)) = (active, response.hover_pos())

@@ -90,6 +90,7 @@ pub fn view(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
     let rect = ui.available_rect_before_wrap();
     let response = ui.allocate_rect(rect, Sense::click_and_drag());
     cx.ui.view3d.rect = rect;
+    cx.ui.drawing = Some(response.id);
     let halves = crate::lab2d::halves(rect, lab.half.compare.is_some());
     if lab.framing && halves[0].is_positive() {
         cx.act(Action3d::Frame {

@@ -64,8 +64,7 @@ pub fn export_buttons(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
         }
         if let Some(rect) = cx.ui.tree_rect {
             ui.label("Tree:");
-            if ui
-                .button("SVG ")
+            if crate::a11y::describe::rename(ui.button("SVG "), "SVG of the tree diagram")
                 .on_hover_text("the tree diagram as a vector drawing")
                 .clicked()
             {
@@ -77,8 +76,7 @@ pub fn export_buttons(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
                     svg.as_bytes(),
                 )));
             }
-            if ui
-                .button("PNG ")
+            if crate::a11y::describe::rename(ui.button("PNG "), "PNG of the tree diagram")
                 .on_hover_text("the tree diagram as a picture")
                 .clicked()
             {

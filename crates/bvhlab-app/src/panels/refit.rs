@@ -149,7 +149,7 @@ pub fn millis_text(ms: f64) -> String {
 /// rebuilds as large diamonds.
 fn cost_plot<P: LabPrimitive>(half: &Half<P>, ui: &mut egui::Ui) {
     ui.label("SAH cost over the edits (dots: refits; diamonds: rebuilds):");
-    Plot::new("refit cost")
+    let shown = Plot::new("refit cost")
         .height(110.0)
         .allow_scroll(false)
         .allow_drag(false)
@@ -195,4 +195,31 @@ fn cost_plot<P: LabPrimitive>(half: &Half<P>, ui: &mut egui::Ui) {
                 );
             }
         });
+    let lanes: Vec<String> = half
+        .lanes()
+        .enumerate()
+        .map(|(index, lane)| {
+            let costs: Vec<String> = lane
+                .log
+                .entries()
+                .filter_map(|e| {
+                    let how = match e.how {
+                        EditKind::Refit => "refit",
+                        EditKind::Rebuild => "rebuild",
+                    };
+                    Some(format!("{how} {:.2}", e.sah_cost?))
+                })
+                .collect();
+            format!("{}: {}", half.lane_name(index), costs.join(", "))
+        })
+        .collect();
+    crate::a11y::describe::figure(
+        ui.ctx(),
+        shown.response.id,
+        "SAH cost over the edits",
+        format!(
+            "The SAH cost after each edit, oldest first. {}.",
+            lanes.join(". ")
+        ),
+    );
 }

@@ -117,7 +117,8 @@ fn cost_plot(record: &SplitRecord, axis: &str, index: usize, ui: &mut egui::Ui) 
         .size()
     });
     let y_axis_width = widest.x + 8.0 + widest.y * 1.25 + 4.0;
-    Plot::new(("sah curve", index))
+    let described = describe_curve(&curve, leaf, chosen, axis);
+    let shown = Plot::new(("sah curve", index))
         .height(170.0)
         .allow_scroll(false)
         .allow_drag(false)
@@ -155,6 +156,30 @@ fn cost_plot(record: &SplitRecord, axis: &str, index: usize, ui: &mut egui::Ui) 
                 );
             }
         });
+    crate::a11y::describe::figure(
+        ui.ctx(),
+        shown.response.id,
+        "The SAH cost of each candidate plane",
+        described,
+    );
+}
+
+/// The SAH curve in words: the planes tried, the cheapest and the leaf's cost.
+fn describe_curve(curve: &[[f64; 2]], leaf: f64, chosen: Option<[f64; 2]>, axis: &str) -> String {
+    use std::fmt::Write as _;
+    let mut text = format!(
+        "{} planes tried along {axis}; keeping a leaf costs {leaf:.1}.",
+        curve.len()
+    );
+    if let Some([at, cost]) = chosen {
+        let _ = write!(text, " The cheapest plane, at {at:.2}, costs {cost:.1}.");
+    }
+    let costs: Vec<String> = curve
+        .iter()
+        .map(|[x, c]| format!("{x:.2}: {c:.1}"))
+        .collect();
+    let _ = write!(text, " Position: cost, for each: {}.", costs.join("; "));
+    text
 }
 
 /// A BVH split method in the lecture's words.

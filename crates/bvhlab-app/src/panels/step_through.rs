@@ -199,20 +199,33 @@ fn transport<P: LabPrimitive>(cx: &mut Cx<'_>, half: &Half<P>, ui: &mut egui::Ui
     let len = half.steps();
     let p = &half.playback;
     ui.horizontal(|ui| {
-        if ui.button("|<").on_hover_text("to the start").clicked() {
+        use crate::a11y::describe::rename;
+        if rename(ui.button("|<"), "first step")
+            .on_hover_text("to the start")
+            .clicked()
+        {
             cx.act(PlaybackAction::GoTo(0));
         }
-        if ui.button("<").on_hover_text("one step back").clicked() {
+        if rename(ui.button("<"), "previous step")
+            .on_hover_text("one step back")
+            .clicked()
+        {
             cx.act(PlaybackAction::StepBy(-1));
         }
         let play = if p.playing { "pause" } else { "play" };
         if ui.button(play).clicked() {
             cx.act(PlaybackAction::Toggle);
         }
-        if ui.button(">").on_hover_text("one step forward").clicked() {
+        if rename(ui.button(">"), "next step")
+            .on_hover_text("one step forward")
+            .clicked()
+        {
             cx.act(PlaybackAction::StepBy(1));
         }
-        if ui.button(">|").on_hover_text("to the end (live)").clicked() {
+        if rename(ui.button(">|"), "last step")
+            .on_hover_text("to the end (live)")
+            .clicked()
+        {
             cx.act(PlaybackAction::End);
         }
     });

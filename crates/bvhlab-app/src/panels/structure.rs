@@ -163,7 +163,7 @@ fn structure_display(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
             .map(|(size, &count)| egui_plot::Bar::new(size as f64, count as f64).width(0.8))
             .collect();
         ui.label("Leaves by number of primitives:");
-        egui_plot::Plot::new("leaf_sizes")
+        let shown = egui_plot::Plot::new("leaf_sizes")
             .height(90.0)
             .allow_drag(false)
             .allow_zoom(false)
@@ -171,6 +171,19 @@ fn structure_display(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
             .show(ui, |plot| {
                 plot.bar_chart(egui_plot::BarChart::new("leaves", bars));
             });
+        let counts: Vec<String> = stats
+            .leaf_sizes
+            .iter()
+            .enumerate()
+            .filter(|(_, count)| **count > 0)
+            .map(|(size, count)| format!("{count} with {size}"))
+            .collect();
+        crate::a11y::describe::figure(
+            ui.ctx(),
+            shown.response.id,
+            "Leaves by number of primitives",
+            format!("Leaves: {}.", counts.join(", ")),
+        );
     }
 }
 

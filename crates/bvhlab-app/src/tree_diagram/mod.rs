@@ -11,8 +11,10 @@
 //! - `forest.rs`: the outline's links as one clean rooted tree;
 //! - `tidy.rs`: the tidy drawing (Reingold and Tilford, 1981, in its linear-time form);
 //! - `layout.rs`: positions, rows for culling, grids, and the cache key;
-//! - `camera.rs`: pan and zoom; `draw.rs`: painting; `describe.rs`: the tooltip.
+//! - `camera.rs`: pan and zoom; `draw.rs`: painting; `describe.rs`: the tooltip;
+//! - `aria.rs`: the diagram as a tree of items for a screen reader.
 
+mod aria;
 mod camera;
 mod describe;
 mod draw;
@@ -117,8 +119,7 @@ impl TreeDiagram {
             return TreeResponse::default();
         };
         ui.horizontal(|ui| {
-            if ui
-                .button("Fit")
+            if crate::a11y::describe::rename(ui.button("Fit"), "Fit the tree diagram")
                 .on_hover_text("Show the whole tree")
                 .clicked()
             {
@@ -157,6 +158,14 @@ impl TreeDiagram {
             painter.layout_no_wrap(text, egui::FontId::proportional(size), color)
         });
         painter.extend(self.shapes.drain(..));
+        aria::tree(
+            ui,
+            response.id,
+            outline,
+            layout,
+            highlight,
+            &summary(layout, outline.len()),
+        );
         if let Some(id) = hovered {
             let text = describe::describe(
                 &outline[id],

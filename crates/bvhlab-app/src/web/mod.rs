@@ -16,6 +16,7 @@ use crate::embed::{Scripting, StartParams};
 use crate::persist::{Autosave, AutosaveStep, STORAGE_KEY};
 use crate::report::Report;
 
+mod a11y;
 mod files;
 
 use files::deliver;
@@ -48,6 +49,7 @@ pub fn start() {
         let origins = Origins::new(&start.params.origins);
         let inbox: Inbox = Rc::new(RefCell::new(Scripting::new(start.params.debug_panic)));
         let runner = eframe::WebRunner::new();
+        let page_canvas = canvas.clone();
         // After eframe's own hook (installed by `WebRunner::new`), so that both run.
         on_panic_tell_page(start.key.clone(), origins.clone());
         let result = runner
@@ -55,6 +57,7 @@ pub fn start() {
                 canvas,
                 eframe::WebOptions::default(),
                 Box::new(move |cc| {
+                    a11y::install(&page_canvas, &cc.egui_ctx);
                     listen_for_links(cc.egui_ctx.clone());
                     crate::embed::browser::listen(
                         inbox.clone(),

@@ -1,0 +1,193 @@
+//! The page's side of the lab for assistive technology ([`crate::a11y`]): a `<main
+//! id="lab-a11y">` over the canvas holds one element per node of egui's accessibility tree,
+//! kept in step by the mirror's operations, and what a person does to those elements goes
+//! back to egui as action requests and key presses.
+//!
+//! - An egui plugin takes each frame's tree update (`output_hook`) and gives egui the requests
+//!   and keys gathered since the last frame (`input_hook`).
+//! - The page is brought up to date at most every [`MIN_GAP_MS`] (a screen reader reads
+//!   slower than the lab animates), and at once after the person did something; a timer
+//!   brings it up to date when the lab stops drawing.
+//! - The canvas leaves the Tab order: Tab moves among the elements as on any page, so it
+//!   leaves the lab after its last one, and Shift+Tab before its first. Escape leaves from
+//!   anywhere ([`crate::a11y::keys`]). A Tab pressed while the canvas has the focus (after a
+//!   click) moves it to the element after egui's focused widget.
+//! - The elements are transparent and let the pointer through (`lab.css`): sighted users see
+//!   the canvas, and the focus egui draws on the widget whose element has the page's focus.
+//!
+//! `dom.rs` applies the mirror's operations to the page; `listen.rs` hears the page.
+
+use std::cell::RefCell;
+use std::collections::HashMap;
+
+use egui::accesskit::NodeId;
+use wasm_bindgen::JsCast;
+use wasm_bindgen::prelude::*;
+
+use crate::a11y::mirror::Mirror;
+
+mod dom;
+mod listen;
+
+use dom::apply;
+use listen::listen;
+
+/// The least time between two updates of the page, in milliseconds, but after a person's
+/// action.
+const MIN_GAP_MS: f64 = 200.0;
+
+/// The container's id.
+const CONTAINER: &str = "lab-a11y";
+
+/// Where the focus goes to leave the lab: after every element, out of the Tab order.
+const END: &str = "lab-a11y-end";
+
+/// Everything the page side keeps (the page is one thread: the plugin and the page's event
+/// handlers reach it through [`STATE`]).
+struct State {
+    mirror: Mirror,
+    container: web_sys::Element,
+    elements: HashMap<NodeId, web_sys::Element>,
+    /// What the person did since the last frame, for egui.
+    inbox: Vec<egui::Event>,
+    /// When the page was last brought up to date (`performance.now()`).
+    last_apply: f64,
+    /// A person's action waits to be seen on the page.
+    prompt: bool,
+    /// A timer is set to bring the page up to date.
+    timer: bool,
+    /// egui, to ask for a frame when the page has news for it.
+    ctx: egui::Context,
+    /// The canvas, to find its Tab.
+    canvas: web_sys::HtmlCanvasElement,
+}
+
+thread_local! {
+    static STATE: RefCell<Option<State>> = const { RefCell::new(None) };
+}
+
+/// Starts the mirror over `canvas`: turns on egui's accessibility tree, adds the plugin, makes
+/// the container and listens to it. Says in the log and does nothing when the page refuses.
+pub fn install(canvas: &web_sys::HtmlCanvasElement, ctx: &egui::Context) {
+    let Some(document) = canvas.owner_document() else {
+        return;
+    };
+    let Ok(container) = document.create_element("main") else {
+        log::warn!("the page refused the lab's element for screen readers");
+        return;
+    };
+    container.set_id(CONTAINER);
+    let _ = container.set_attribute("aria-label", "bvh-lab");
+    if canvas.after_with_node_1(&container).is_err() {
+        return;
+    }
+    let Ok(end) = document.create_element("div") else {
+        return;
+    };
+    end.set_id(END);
+    let _ = end.set_attribute("tabindex", "-1");
+    let _ = end.set_attribute("aria-label", "End of the lab: Tab leaves it");
+    let _ = container.after_with_node_1(&end);
+    // The canvas stays focusable by a click, but out of the Tab order.
+    canvas.set_tab_index(-1);
+    listen(&container, canvas);
+    ctx.enable_accesskit();
+    ctx.add_plugin(MirrorPlugin);
+    STATE.with(|s| {
+        *s.borrow_mut() = Some(State {
+            mirror: Mirror::new(),
+            container,
+            elements: HashMap::new(),
+            inbox: Vec::new(),
+            last_apply: f64::NEG_INFINITY,
+            prompt: true,
+            timer: false,
+            ctx: ctx.clone(),
+            canvas: canvas.clone(),
+        });
+    });
+}
+
+/// The plugin: tree updates in, the page's events out.
+struct MirrorPlugin;
+
+impl egui::Plugin for MirrorPlugin {
+    fn debug_name(&self) -> &'static str {
+        "bvh-lab page mirror"
+    }
+
+    fn input_hook(&mut self, _ctx: &egui::Context, input: &mut egui::RawInput) {
+        with_state(|s| {
+            input.events.append(&mut s.inbox);
+            // eframe tells egui whether the canvas has the focus; the lab has it too when one
+            // of its elements does (egui then draws the focus, and its keys act).
+            let active = s
+                .container
+                .owner_document()
+                .and_then(|d| d.active_element());
+            if active.is_some_and(|a| s.container.contains(Some(&a))) {
+                input.focused = true;
+            }
+        });
+    }
+
+    fn output_hook(&mut self, _ctx: &egui::Context, output: &mut egui::FullOutput) {
+        let Some(update) = output.platform_output.accesskit_update.take() else {
+            return;
+        };
+        with_state(|s| s.mirror.update(update));
+        bring_up_to_date(false);
+    }
+}
+
+/// Runs `f` on the state, if the mirror is installed.
+fn with_state<R>(f: impl FnOnce(&mut State) -> R) -> Option<R> {
+    STATE.with(|s| s.borrow_mut().as_mut().map(f))
+}
+
+/// Milliseconds since the page opened.
+fn now() -> f64 {
+    web_sys::window()
+        .and_then(|w| w.performance())
+        .map_or(0.0, |p| p.now())
+}
+
+/// Applies the mirror's changes to the page, unless the last update was under [`MIN_GAP_MS`]
+/// ago and nobody acted since (`timer`: called by the timer, which then always applies); a
+/// timer then catches up later.
+fn bring_up_to_date(timer: bool) {
+    let Some(ops) = with_state(|s| {
+        if timer {
+            s.timer = false;
+        }
+        let t = now();
+        if !timer && !s.prompt && t - s.last_apply < MIN_GAP_MS {
+            if !s.timer {
+                s.timer = true;
+                set_timer(MIN_GAP_MS);
+            }
+            return None;
+        }
+        s.prompt = false;
+        s.last_apply = t;
+        Some(s.mirror.changes())
+    })
+    .flatten() else {
+        return;
+    };
+    with_state(|s| apply(s, &ops));
+}
+
+/// Calls [`bring_up_to_date`] in `ms` milliseconds.
+fn set_timer(ms: f64) {
+    let Some(window) = web_sys::window() else {
+        return;
+    };
+    let callback = Closure::once_into_js(|| bring_up_to_date(true));
+    if window
+        .set_timeout_with_callback_and_timeout_and_arguments_0(callback.unchecked_ref(), ms as i32)
+        .is_err()
+    {
+        with_state(|s| s.timer = false);
+    }
+}
