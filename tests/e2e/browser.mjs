@@ -121,3 +121,15 @@ export async function dropFile(page, name, bytes) {
     { name, bytes: [...bytes] },
   );
 }
+
+/// What the live region (`#lab-status`) says, once `accept(text)` holds: it tells only the
+/// news, at most every half second, so a change reaches it a moment after the report.
+export async function liveRegionSays(pageOrFrame, accept, what, timeoutMs = 5_000) {
+  const start = Date.now();
+  for (;;) {
+    const text = await pageOrFrame.evaluate(() => document.getElementById('lab-status')?.textContent ?? '');
+    if (accept(text)) return text;
+    if (Date.now() - start > timeoutMs) throw new Failure(`the live region never said ${what}; it says: ${text}`);
+    await new Promise((done) => setTimeout(done, 100));
+  }
+}

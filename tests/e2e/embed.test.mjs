@@ -23,7 +23,7 @@ import { tmpdir } from 'node:os';
 import { dirname, join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
-import { BASE_ARGS, Failure, check, dropFile, seconds, waitForReport } from './browser.mjs';
+import { BASE_ARGS, Failure, check, dropFile, liveRegionSays, seconds, waitForReport } from './browser.mjs';
 
 const url = process.argv[2] ?? process.env.LAB_URL;
 if (!url) {
@@ -288,8 +288,7 @@ async function courseProgress(context, summary) {
   check(refused?.includes('slab-test'), `an unknown lesson is refused with the names: ${refused}`);
   const listed = await page.$$eval('#progress li', (items) => items.map((li) => li.textContent));
   check(listed.some((t) => t.includes('slab-test, step 1 of 3: done (1 of 3')), `the page lists the step done: ${JSON.stringify(listed)}`);
-  const spoken = await page.frames()[1].evaluate(() => document.getElementById('lab-status').textContent);
-  check(spoken.includes('step 2 of 3') && spoken.includes('Task:'), `the live region says the step and task: ${spoken}`);
+  await liveRegionSays(page.frames()[1], (t) => t.includes('step 2 of 3') && t.includes('Task:'), 'the step and its task');
   await page.screenshot({ path: join(outDir, 'embed-course.png') });
   const csp = await violations(page);
   check(csp.length === 0, `no CSP violations: ${JSON.stringify(csp)}`);

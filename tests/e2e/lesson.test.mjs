@@ -19,7 +19,7 @@ import { tmpdir } from 'node:os';
 import { dirname, join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
-import { BASE_ARGS, Failure, check, waitForReport } from './browser.mjs';
+import { BASE_ARGS, Failure, check, liveRegionSays, waitForReport } from './browser.mjs';
 
 const url = process.argv[2] ?? process.env.LAB_URL;
 if (!url) {
@@ -34,7 +34,6 @@ const TIMEOUT_MS = 60_000;
 
 const report = (page) =>
   page.evaluate(() => JSON.parse(document.getElementById('lab-status').dataset.report ?? 'null'));
-const spoken = (page) => page.evaluate(() => document.getElementById('lab-status').textContent);
 
 // Waits until the report satisfies `accept`; returns it.
 const until = async (page, accept, timeoutMs, what) =>
@@ -107,8 +106,7 @@ async function keyboardOnly(browser, summary) {
       continue;
     }
     const step = r.predict.question.step;
-    const text = await spoken(page);
-    check(text.includes('Predict: ') && text.includes('1 '), `the live region asks: ${text}`);
+    await liveRegionSays(page, (t) => t.includes('Predict: ') && t.includes('1 '), 'the question');
     // Stepping past a question is refused.
     await page.keyboard.press('Period');
     await page.waitForTimeout(150);
@@ -132,8 +130,7 @@ async function keyboardOnly(browser, summary) {
   check(score.first_time === right && score.after_hint === wrongThenRight && score.shown === shown,
     `the score counts them: ${JSON.stringify(score)}`);
   summary.keyboardPredict = `${right} right first time, ${wrongThenRight} after a hint, ${shown} shown (${r.predict.exercise})`;
-  const words = await spoken(page);
-  check(/Step \d+ of \d+: /.test(words), `the live region says the step in words: ${words}`);
+  await liveRegionSays(page, (t) => /Step \d+ of \d+: /.test(t), 'the step in words');
   await page.screenshot({ path: join(outDir, 'lesson-keyboard-predict.png') });
   check(problems.length === 0, `no errors: ${JSON.stringify(problems)}`);
   await page.close();

@@ -3,7 +3,7 @@
 # (Node.js and Debian's Chromium with software Vulkan/GL when missing and we are root, then the
 # pinned playwright-core and pngjs with npm ci), builds the page (web/build.sh), serves it on a
 # free local port (web/server.mjs), runs the tests of tests/e2e/ against it (lab, view3d, embed,
-# hosting), and stops the server.
+# hosting, a11y), and stops the server.
 # The exit code is the test's. Screenshots and the server's log go to target/e2e/.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -61,3 +61,4 @@ node tests/e2e/view3d.test.mjs "$url"
 node tests/e2e/embed.test.mjs "$url"
 node tests/e2e/lesson.test.mjs "$url"
 node tests/e2e/hosting.test.mjs "$url"
+node tests/e2e/a11y.test.mjs "$url"

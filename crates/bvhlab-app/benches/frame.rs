@@ -2,16 +2,22 @@
 //! UI, the drawing and egui's tessellation into triangles — everything but the GPU's
 //! rasterisation. The frame budget at 60 frames per second is 16.7 ms.
 //!
+//! And what the page's mirror for screen readers ([`bvhlab_app::a11y`]) adds to a frame while
+//! a query plays on the same scene: egui's AccessKit tree built every frame and taken in by the
+//! mirror, whose changes the page applies every 200 ms (every 12th frame at 60 frames per
+//! second), against the same frames without it.
+//!
 //! `cargo bench -p bvhlab-app --bench frame`
 
 use std::hint::black_box;
 
 use bvhlab::glam::Vec2;
 use bvhlab_app::LabApp;
+use bvhlab_app::a11y::mirror::Mirror;
 use bvhlab_app::model::lab2d::RayHandles;
 use bvhlab_app::model::presets::Preset;
 use bvhlab_app::model::structures::StructureKind;
-use bvhlab_app::model::{Action2d, HalfAction};
+use bvhlab_app::model::{Action2d, HalfAction, PlaybackAction};
 use criterion::{Criterion, criterion_group, criterion_main};
 use egui::{RawInput, Rect, pos2, vec2};
 
@@ -24,7 +30,17 @@ fn input() -> RawInput {
 
 /// One frame: the app's UI, then tessellation. Returns the triangle count.
 fn frame(ctx: &egui::Context, app: &mut LabApp) -> usize {
+    frame_then(ctx, app, |_| {})
+}
+
+/// One frame, with `then` given the output before tessellation.
+fn frame_then(
+    ctx: &egui::Context,
+    app: &mut LabApp,
+    then: impl FnOnce(&mut egui::FullOutput),
+) -> usize {
     let mut output = ctx.run_ui(input(), |ui| app.show(ui));
+    then(&mut output);
     output.textures_delta.clear();
     let shapes = std::mem::take(&mut output.shapes);
     ctx.tessellate(shapes, output.pixels_per_point)
@@ -86,9 +102,65 @@ fn dragging_a_ray(c: &mut Criterion) {
     group.finish();
 }
 
+/// The page applies the mirror's changes at most every 200 ms: every 12th frame at 60 per
+/// second (`MIN_GAP_MS` in `web/a11y`).
+const FRAMES_PER_PAGE_UPDATE: u32 = 12;
+
+fn playing_with_the_mirror(c: &mut Criterion) {
+    let mut group = c.benchmark_group("frame_10k_segments_playing");
+    for mirrored in [false, true] {
+        let ctx = egui::Context::default();
+        if mirrored {
+            ctx.enable_accesskit();
+        }
+        let mut mirror = Mirror::new();
+        let mut app = LabApp::with([Action2d::LoadPreset(Preset::TenThousand).into()]);
+        frame(&ctx, &mut app);
+        frame(&ctx, &mut app);
+        let rect = app.canvas_screen().rect;
+        let ray = RayHandles {
+            origin: app
+                .canvas_screen()
+                .to_world(pos2(rect.left() + 20.0, rect.center().y)),
+            target: app.canvas_screen().to_world(rect.right_center()),
+        };
+        app.apply(Action2d::SetRay(Some(ray)))
+            .expect("a ray across the canvas");
+        let mut count = 0u32;
+        let name = if mirrored {
+            "with the mirror"
+        } else {
+            "without the mirror"
+        };
+        group.bench_function(name, |b| {
+            b.iter(|| {
+                if !app.lab().playing() {
+                    app.apply(PlaybackAction::Play(true))
+                        .expect("playback starts");
+                }
+                count += 1;
+                black_box(frame_then(&ctx, &mut app, |output| {
+                    if let Some(update) = output.platform_output.accesskit_update.take() {
+                        mirror.update(update);
+                        if count.is_multiple_of(FRAMES_PER_PAGE_UPDATE) {
+                            black_box(mirror.changes());
+                        }
+                    }
+                }))
+            });
+        });
+        assert_eq!(
+            !mirror.is_empty(),
+            mirrored,
+            "the mirror holds the tree exactly when AccessKit is on"
+        );
+    }
+    group.finish();
+}
+
 criterion_group! {
     name = benches;
     config = Criterion::default().sample_size(30);
-    targets = dragging_a_ray
+    targets = dragging_a_ray, playing_with_the_mirror
 }
 criterion_main!(benches);

@@ -6,7 +6,7 @@
 use std::collections::{BTreeMap, HashMap};
 
 use bvhlab_app::LabApp;
-use bvhlab_app::a11y::events::{PageEvent, request};
+use bvhlab_app::a11y::events::{PageEvent, requests};
 use bvhlab_app::a11y::mirror::{DomOp, Mirror};
 use egui::accesskit::NodeId;
 use egui::{RawInput, Rect, pos2, vec2};
@@ -182,8 +182,9 @@ impl Run {
 
     /// Sends what a person did to an element, then lets the lab settle.
     fn act(&mut self, node: NodeId, event: PageEvent) {
-        self.events
-            .push(request(node, event).expect("a request for a sensible event"));
+        let requests = requests(node, event);
+        assert!(!requests.is_empty(), "a request for a sensible event");
+        self.events.extend(requests);
         self.settle();
     }
 }

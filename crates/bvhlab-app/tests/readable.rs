@@ -286,3 +286,29 @@ fn the_sah_plots_axis_names_clear_its_numbers_from_a_nodes_first_frame() {
         );
     }
 }
+
+/// WCAG 2.1's 1.4.11 (non-text contrast): the focus egui draws on a widget (its "active"
+/// outline, which the page's mirror turns on for the widget whose element has the focus) at
+/// 3:1 or more against the panel behind it, in both themes, as the lab installs them.
+#[test]
+fn the_focus_outline_is_3_to_1_on_the_panels_in_both_themes() {
+    let ctx = egui::Context::default();
+    bvhlab_app::theme::install(&ctx);
+    for theme in [Theme::Dark, Theme::Light] {
+        let visuals = ctx.style_of(theme).visuals.clone();
+        let ring = visuals.widgets.active.bg_stroke;
+        assert!(
+            ring.width >= 1.0,
+            "{theme:?}: the focus outline is {} points wide",
+            ring.width
+        );
+        for behind in [visuals.panel_fill, visuals.window_fill] {
+            let ratio = contrast(ring.color, behind);
+            assert!(
+                ratio >= 3.0,
+                "{theme:?}: the focus outline {:?} is {ratio:.2}:1 on {behind:?}",
+                ring.color
+            );
+        }
+    }
+}

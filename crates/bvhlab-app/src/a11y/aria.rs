@@ -272,7 +272,11 @@ fn other(node: &Node, name: &Name<'_>, attrs: &mut Attrs) -> (&'static str, Opti
             ("div", None)
         }
         _ => {
-            name.push(attrs);
+            // A named container is a group (ARIA names no plain `div`).
+            if name.label.is_some() || !name.labelled_by.is_empty() {
+                role(attrs, "group");
+                name.push(attrs);
+            }
             ("div", None)
         }
     }

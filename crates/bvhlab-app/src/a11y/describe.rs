@@ -3,8 +3,9 @@
 //! description, the summary a student can read again at any time (the scene, the structure,
 //! the ray or point and its answer, the counters, the step shown and what it did, the lesson's
 //! task, Predict's question: the report's text, [`Report::text`]). The screen reader finds it
-//! as a described drawing (`role="application"` in the page, since its keys go to the lab: R
-//! and the arrows move the ray, `.` and `,` step).
+//! as a described drawing (`role="application"` in the page, since its keys go to the lab: in
+//! 2D, R and the arrows move the ray; in 3D, the arrows orbit and Enter casts; `.` and `,`
+//! step).
 
 use egui::accesskit::Role;
 
@@ -17,13 +18,22 @@ pub fn drawing(ctx: &egui::Context, id: egui::Id, dimension: Dimension, report: 
         Dimension::Two => "2D view: the scene, the structure and the query",
         Dimension::Three => "3D view: the mesh, the structure and the query",
     };
+    let keys = match dimension {
+        Dimension::Two => {
+            "R picks the ray's start, its point or the query point, the arrow keys move it"
+        }
+        Dimension::Three => {
+            "the arrow keys turn the camera, + and - zoom, Enter casts a ray through the middle \
+             of the view or puts the query point where it meets the mesh (the numbers are in \
+             the Ray and point panel), H shows the heat map"
+        }
+    };
     let summary = report.text();
     ctx.accesskit_node_builder(id, |node| {
         node.set_role(Role::Canvas);
         node.set_label(name);
         node.set_description(format!(
-            "{} Keys: R picks the ray's start, its point or the query point, the arrow keys \
-             move it; . and , step the query; Home and End go to its start and end.",
+            "{} Keys: {keys}; . and , step the query; Home and End go to its start and end.",
             summary.trim()
         ));
     });

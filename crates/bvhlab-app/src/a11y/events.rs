@@ -22,23 +22,33 @@ pub enum PageEvent {
     Step(i32),
 }
 
-/// The egui input event for `event` on `node`'s element; none for a number that is not one.
-pub fn request(node: NodeId, event: PageEvent) -> Option<egui::Event> {
-    let (action, data) = match event {
-        PageEvent::Press => (Action::Click, None),
-        PageEvent::Focus => (Action::Focus, None),
-        PageEvent::Number(x) if x.is_finite() => {
-            (Action::SetValue, Some(ActionData::NumericValue(x)))
-        }
-        PageEvent::Number(_) => return None,
-        PageEvent::Text(text) => (Action::SetValue, Some(ActionData::Value(text.into()))),
-        PageEvent::Step(s) if s > 0 => (Action::Increment, None),
-        PageEvent::Step(_) => (Action::Decrement, None),
+/// The egui input events for `event` on `node`'s element; none for a number that is not one.
+/// The focus also asks egui to scroll the widget into its panel's view, so that the focus a
+/// keyboard user follows is always drawn where they can see it (WCAG 2.4.11).
+pub fn requests(node: NodeId, event: PageEvent) -> Vec<egui::Event> {
+    let request = |action, data| {
+        egui::Event::AccessKitActionRequest(ActionRequest {
+            action,
+            target_tree: TreeId::ROOT,
+            target_node: node,
+            data,
+        })
     };
-    Some(egui::Event::AccessKitActionRequest(ActionRequest {
-        action,
-        target_tree: TreeId::ROOT,
-        target_node: node,
-        data,
-    }))
+    match event {
+        PageEvent::Press => vec![request(Action::Click, None)],
+        PageEvent::Focus => vec![
+            request(Action::Focus, None),
+            request(Action::ScrollIntoView, None),
+        ],
+        PageEvent::Number(x) if x.is_finite() => {
+            vec![request(Action::SetValue, Some(ActionData::NumericValue(x)))]
+        }
+        PageEvent::Number(_) => Vec::new(),
+        PageEvent::Text(text) => vec![request(
+            Action::SetValue,
+            Some(ActionData::Value(text.into())),
+        )],
+        PageEvent::Step(s) if s > 0 => vec![request(Action::Increment, None)],
+        PageEvent::Step(_) => vec![request(Action::Decrement, None)],
+    }
 }

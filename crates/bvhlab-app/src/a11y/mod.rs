@@ -9,7 +9,7 @@
 //! - [`events`]: what a person does to an element, as the request egui answers.
 //! - [`keys`]: which keys the browser keeps, which go on to the lab, and which leave it.
 //!
-//! The web side (`web/a11y.rs`) applies the changes to the page and sends back what a person
+//! The web side (`web/a11y/`) applies the changes to the page and sends back what a person
 //! does to the elements (press, focus, a new value) as AccessKit action requests, which egui's
 //! widgets answer as they answer a click, so every change still reaches the lab as its
 //! model's actions.

@@ -54,6 +54,22 @@ impl KeyHandle {
     }
 }
 
+/// Keeps the arrow keys for the drawing `view` while it has the focus: egui would otherwise
+/// take them to move the focus to the widget beside it (Tab and Escape still leave).
+pub(crate) fn keep_arrow_keys(ctx: &egui::Context, view: egui::Id) {
+    ctx.memory_mut(|m| {
+        m.set_focus_lock_filter(
+            view,
+            egui::EventFilter {
+                horizontal_arrows: true,
+                vertical_arrows: true,
+                tab: false,
+                escape: false,
+            },
+        );
+    });
+}
+
 /// Reads R and the arrow keys; `picked` is the handle the arrows move, kept between frames.
 pub(super) fn handle_keys(
     cx: &mut Cx<'_>,
@@ -63,6 +79,7 @@ pub(super) fn handle_keys(
     canvas: egui::Id,
 ) {
     let ctx = ui.ctx();
+    keep_arrow_keys(ctx, canvas);
     if ctx.text_edit_focused() || ctx.memory(|m| m.focused().is_some_and(|f| f != canvas)) {
         return;
     }

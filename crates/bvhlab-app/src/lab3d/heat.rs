@@ -85,12 +85,14 @@ impl HeatMap {
                 device: "gpu".to_owned(),
                 progress: if self.gpu_max.is_some() { 1.0 } else { 0.0 },
                 max: self.gpu_max.unwrap_or(0),
+                metric: self.metric.label(),
             }
         } else {
             HeatReport {
                 device: "cpu".to_owned(),
                 progress: self.cpu.as_ref().map_or(0.0, CpuHeatMap::fraction),
                 max: self.cpu.as_ref().map_or(0, CpuHeatMap::max_count),
+                metric: self.metric.label(),
             }
         })
     }

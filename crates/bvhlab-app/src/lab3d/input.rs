@@ -136,7 +136,7 @@ pub fn handle_input(cx: &mut Cx<'_>, response: &Response, rect: Rect) {
 }
 
 /// A click: casts a ray from the camera, or puts the point where the click meets the mesh.
-fn click(lab: &Lab3d, pixel: Vec2, size: Vec2) -> Option<Action3d> {
+pub(super) fn click(lab: &Lab3d, pixel: Vec2, size: Vec2) -> Option<Action3d> {
     let ray = lab.camera.ray_through(pixel, size)?;
     let ray = Ray3::new(ray.origin(), ray.dir().normalize_or_zero()).ok()?;
     match lab.tool {

@@ -13,6 +13,7 @@
 pub mod draw;
 pub mod heat;
 pub mod input;
+mod keys;
 pub mod nodes;
 pub mod picture;
 pub mod side_view;
@@ -99,6 +100,7 @@ pub fn view(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
     }
     // Input goes through the first half's projection (both show the same camera).
     input::handle_input(cx, &response, halves[0]);
+    keys::handle_keys(cx, ui, halves[0], response.id);
     if cx.ui.link_hover
         && cx.ui.view3d.dragging.is_none()
         && !response.dragged()
@@ -180,6 +182,7 @@ pub fn view(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
     }
     // A clicked ray runs straight into the screen: the inset shows it from the side.
     cx.ui.view3d.side = side_view::side_view(lab, lab.half.lane_at(0), halves[0], &painter);
+    keys::draw_aim(ui, &painter, halves[0], response.id);
     crate::paint::legend(&painter, rect, "tested triangle");
 }
 

@@ -229,8 +229,14 @@ impl OrbitCamera {
 
     /// Turns the camera about its target by a screen-space drag of `delta` points.
     pub fn orbit(&mut self, delta: Vec2) {
-        self.yaw -= delta.x * 0.008;
-        self.pitch = (self.pitch + delta.y * 0.008).clamp(-MAX_PITCH, MAX_PITCH);
+        self.turn(-delta.x * 0.008, delta.y * 0.008);
+    }
+
+    /// Turns the camera about its target by `yaw` and `pitch` radians (the pitch kept short
+    /// of straight up or down).
+    pub fn turn(&mut self, yaw: f32, pitch: f32) {
+        self.yaw += yaw;
+        self.pitch = (self.pitch + pitch).clamp(-MAX_PITCH, MAX_PITCH);
     }
 
     /// Moves the target (and eye) with a screen-space drag of `delta` points in a viewport

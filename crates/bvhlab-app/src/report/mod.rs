@@ -3,6 +3,7 @@
 
 pub mod motion;
 pub mod predict;
+pub mod speech;
 pub mod update;
 
 use std::fmt::Write as _;
@@ -316,50 +317,6 @@ impl Report {
     pub fn json(&self) -> String {
         serde_json::to_string(self).unwrap_or_else(|e| format!("{{\"error\":\"{e}\"}}"))
     }
-
-    /// The report as one sentence for screen readers.
-    pub fn text(&self) -> String {
-        let mut s = format!(
-            "bvh-lab: {} primitives, {}.",
-            self.scene.primitives, self.structure
-        );
-        if let Some(q) = &self.query {
-            match &q.hit {
-                Some(h) => {
-                    let _ = write!(
-                        s,
-                        " Ray hits primitive {} at t = {:.3}, point ({:.2}, {:.2}).",
-                        h.primitive, h.t, h.point[0], h.point[1]
-                    );
-                }
-                None => s += " Ray hits nothing.",
-            }
-            let _ = write!(
-                s,
-                " Nodes visited {}, bounding-volume tests {}, primitive tests {} (brute force {}).",
-                q.nodes_visited, q.bound_tests, q.primitive_tests, q.brute_force_tests
-            );
-        }
-        if let Some(n) = &self.nearest
-            && let Some((prim, _, d)) = n.nearest
-        {
-            let _ = write!(s, " Nearest primitive {prim} at distance {d:.3}.");
-        }
-        if let Some(step) = self.playback.first() {
-            s.push_str(&step.text());
-        }
-        if let Some(lesson) = &self.lesson {
-            s.push(' ');
-            s.push_str(&lesson.text());
-        }
-        if let Some(predict) = self.predict.as_ref().map(predict::PredictReport::text)
-            && !predict.is_empty()
-        {
-            s.push(' ');
-            s.push_str(&predict);
-        }
-        s
-    }
 }
 
 /// The 3D view's state in brief.
@@ -417,6 +374,8 @@ pub struct HeatReport {
     pub progress: f32,
     /// The largest count in the image.
     pub max: u32,
+    /// What a pixel's colour counts ("nodes visited per ray").
+    pub metric: &'static str,
 }
 
 impl Report3d {

@@ -1,6 +1,6 @@
 //! The web page side: starting the lab on the `#lab` canvas with the state the address or the
 //! browser asks for, keeping that state in `localStorage` as it changes, publishing the lab's
-//! [`Report`] into `#lab-status` (text for screen readers, JSON in `data-report` for the page,
+//! [`Report`] into `#lab-status` (its news for screen readers, `live.rs`; JSON in `data-report` for the page,
 //! the browser test and course pages that embed the lab), and the browser's side of saving
 //! and sharing (`files.rs`: the file dialog, dropped files and the clipboard).
 
@@ -18,6 +18,7 @@ use crate::report::Report;
 
 mod a11y;
 mod files;
+mod live;
 
 use files::deliver;
 pub use files::{News, copy_text, pick_file, read_dropped, take_news};
@@ -378,7 +379,7 @@ pub fn publish(report: &Report) {
     else {
         return;
     };
-    element.set_text_content(Some(&report.text()));
+    live::tell(report.sentences());
     if element.set_attribute("data-report", &json).is_err() {
         log::warn!("could not write the lab's report to the page");
     }

@@ -7,8 +7,8 @@ use wasm_bindgen::JsCast;
 use wasm_bindgen::prelude::*;
 
 use super::dom::FOCUSABLE;
-use super::{END, State, with_state};
-use crate::a11y::events::{PageEvent, request};
+use super::{END, INBOX, STATE, post};
+use crate::a11y::events::{PageEvent, requests};
 use crate::a11y::keys::{Route, Target, route};
 use crate::a11y::mirror::{element_id, node_of};
 
@@ -119,16 +119,8 @@ fn target_node(event: &web_sys::Event) -> Option<NodeId> {
 
 /// Queues what the person did, for egui's next frame, and asks for that frame.
 fn send(node: NodeId, event: PageEvent) {
-    let Some(request) = request(node, event) else {
-        return;
-    };
-    let ctx = with_state(|s| {
-        s.inbox.push(request);
-        s.prompt = true;
-        s.ctx.clone()
-    });
-    if let Some(ctx) = ctx {
-        ctx.request_repaint();
+    for request in requests(node, event) {
+        post(request);
     }
 }
 
@@ -145,7 +137,7 @@ fn on_key(event: &web_sys::KeyboardEvent, down: bool) {
         element.get_attribute("type").as_deref(),
         element.get_attribute("role").as_deref(),
     );
-    let popup = with_state(|s| s.mirror.popup_open()).unwrap_or(false);
+    let popup = INBOX.with(|i| i.borrow().popup);
     match route(target, &event.key(), popup) {
         Route::Native => {}
         Route::Step(step) => {
@@ -172,22 +164,15 @@ fn on_key(event: &web_sys::KeyboardEvent, down: bool) {
                 mac_cmd: event.meta_key(),
                 command: event.ctrl_key() || event.meta_key(),
             };
-            let ctx = with_state(|s| {
-                s.inbox.push(egui::Event::Key {
-                    key,
-                    physical_key: None,
-                    pressed: down,
-                    repeat: event.repeat(),
-                    modifiers,
-                });
-                if down && event.key().chars().count() == 1 && !modifiers.command {
-                    s.inbox.push(egui::Event::Text(event.key()));
-                }
-                s.prompt = true;
-                s.ctx.clone()
+            post(egui::Event::Key {
+                key,
+                physical_key: None,
+                pressed: down,
+                repeat: event.repeat(),
+                modifiers,
             });
-            if let Some(ctx) = ctx {
-                ctx.request_repaint();
+            if down && event.key().chars().count() == 1 && !modifiers.command {
+                post(egui::Event::Text(event.key()));
             }
         }
     }
@@ -207,14 +192,15 @@ fn leave() {
 /// Tab (or Shift+Tab) on the canvas: the focus goes to the element after (before) egui's
 /// focused widget, or to the first (last) one. Whether it moved.
 fn tab_from_canvas(back: bool) -> bool {
-    let Some((focusable, focused)) = with_state(|s| {
-        let focusable = s.container.query_selector_all(FOCUSABLE).ok();
-        let focused = s.canvas.owner_document().and(s.mirror_focus());
-        (focusable, focused)
+    let Some(container) = STATE.with(|s| {
+        s.try_borrow()
+            .ok()
+            .and_then(|s| s.as_ref().map(|s| s.container.clone()))
     }) else {
         return false;
     };
-    let Some(list) = focusable else {
+    let focused = INBOX.with(|i| i.borrow().focus);
+    let Ok(list) = container.query_selector_all(FOCUSABLE) else {
         return false;
     };
     let elements: Vec<web_sys::HtmlElement> = (0..list.length())
@@ -234,11 +220,4 @@ fn tab_from_canvas(back: bool) -> bool {
         (None, true) => elements.len() - 1,
     };
     elements[next].focus().is_ok()
-}
-
-impl State {
-    /// The node egui's focus is on, as the mirror last heard.
-    fn mirror_focus(&self) -> Option<NodeId> {
-        self.mirror.focus()
-    }
 }

@@ -42,28 +42,51 @@ const CONTAINER: &str = "lab-a11y";
 /// Where the focus goes to leave the lab: after every element, out of the Tab order.
 const END: &str = "lab-a11y-end";
 
-/// Everything the page side keeps (the page is one thread: the plugin and the page's event
-/// handlers reach it through [`STATE`]).
+/// What the plugin keeps (the page is one thread: the plugin reaches it through [`STATE`]).
+/// The page's event handlers never borrow it: the page fires events while the mirror's
+/// operations are applied (a removed element's blur, a focus moved), so they go to the
+/// [`INBOX`] instead, which nothing holds for long.
 struct State {
     mirror: Mirror,
     container: web_sys::Element,
     elements: HashMap<NodeId, web_sys::Element>,
-    /// What the person did since the last frame, for egui.
-    inbox: Vec<egui::Event>,
     /// When the page was last brought up to date (`performance.now()`).
     last_apply: f64,
-    /// A person's action waits to be seen on the page.
-    prompt: bool,
     /// A timer is set to bring the page up to date.
     timer: bool,
-    /// egui, to ask for a frame when the page has news for it.
-    ctx: egui::Context,
     /// The canvas, to find its Tab.
     canvas: web_sys::HtmlCanvasElement,
 }
 
+/// What the person did since the last frame, for egui, and egui to wake.
+#[derive(Default)]
+struct Inbox {
+    events: Vec<egui::Event>,
+    /// A person's action waits to be seen on the page.
+    prompt: bool,
+    ctx: Option<egui::Context>,
+    /// Whether a combo box's list is open, as the page was last told (Escape closes it).
+    popup: bool,
+    /// The node egui's focus was on, as the page was last told.
+    focus: Option<NodeId>,
+}
+
 thread_local! {
     static STATE: RefCell<Option<State>> = const { RefCell::new(None) };
+    static INBOX: RefCell<Inbox> = RefCell::new(Inbox::default());
+}
+
+/// Queues an event for egui's next frame and asks for that frame.
+fn post(event: egui::Event) {
+    let ctx = INBOX.with(|i| {
+        let mut inbox = i.borrow_mut();
+        inbox.events.push(event);
+        inbox.prompt = true;
+        inbox.ctx.clone()
+    });
+    if let Some(ctx) = ctx {
+        ctx.request_repaint();
+    }
 }
 
 /// Starts the mirror over `canvas`: turns on egui's accessibility tree, adds the plugin, makes
@@ -86,23 +109,25 @@ pub fn install(canvas: &web_sys::HtmlCanvasElement, ctx: &egui::Context) {
     };
     end.set_id(END);
     let _ = end.set_attribute("tabindex", "-1");
-    let _ = end.set_attribute("aria-label", "End of the lab: Tab leaves it");
+    end.set_text_content(Some("End of the lab: Tab leaves it."));
     let _ = container.after_with_node_1(&end);
     // The canvas stays focusable by a click, but out of the Tab order.
     canvas.set_tab_index(-1);
     listen(&container, canvas);
     ctx.enable_accesskit();
     ctx.add_plugin(MirrorPlugin);
+    INBOX.with(|i| {
+        let mut inbox = i.borrow_mut();
+        inbox.ctx = Some(ctx.clone());
+        inbox.prompt = true;
+    });
     STATE.with(|s| {
         *s.borrow_mut() = Some(State {
             mirror: Mirror::new(),
             container,
             elements: HashMap::new(),
-            inbox: Vec::new(),
             last_apply: f64::NEG_INFINITY,
-            prompt: true,
             timer: false,
-            ctx: ctx.clone(),
             canvas: canvas.clone(),
         });
     });
@@ -117,8 +142,8 @@ impl egui::Plugin for MirrorPlugin {
     }
 
     fn input_hook(&mut self, _ctx: &egui::Context, input: &mut egui::RawInput) {
+        INBOX.with(|i| input.events.append(&mut i.borrow_mut().events));
         with_state(|s| {
-            input.events.append(&mut s.inbox);
             // eframe tells egui whether the canvas has the focus; the lab has it too when one
             // of its elements does (egui then draws the focus, and its keys act).
             let active = s
@@ -161,16 +186,23 @@ fn bring_up_to_date(timer: bool) {
             s.timer = false;
         }
         let t = now();
-        if !timer && !s.prompt && t - s.last_apply < MIN_GAP_MS {
+        let prompt = INBOX.with(|i| std::mem::take(&mut i.borrow_mut().prompt));
+        if !timer && !prompt && t - s.last_apply < MIN_GAP_MS {
             if !s.timer {
                 s.timer = true;
                 set_timer(MIN_GAP_MS);
             }
             return None;
         }
-        s.prompt = false;
         s.last_apply = t;
-        Some(s.mirror.changes())
+        let ops = s.mirror.changes();
+        let (popup, focus) = (s.mirror.popup_open(), s.mirror.focus());
+        INBOX.with(|i| {
+            let mut inbox = i.borrow_mut();
+            inbox.popup = popup;
+            inbox.focus = focus;
+        });
+        Some(ops)
     })
     .flatten() else {
         return;
