@@ -11,6 +11,9 @@
 // 4. Tab from a link before an embedded lab reaches the link after it; Shift+Tab comes back.
 // 5. axe-core (WCAG 2.0 and 2.1, A and AA) finds no violation on the first screen, a lesson
 //    step, the "Step through" panel, the 3D view and the embedding example page.
+// 6. Stepping by the buttons is heard step by step; the 3D view is turned and cast by keys.
+// 7. At 200% zoom on a laptop the view keeps room and the focused control is scrolled into
+//    view.
 //
 //   node tests/e2e/a11y.test.mjs http://127.0.0.1:PORT/
 //
@@ -324,6 +327,42 @@ async function tabThroughAnEmbeddedLab(context, summary) {
   await page.close();
 }
 
+/// A 1280x720 laptop at 200% zoom: a window of 640x360 CSS pixels at two device pixels each
+/// (Chromium's own scale factor: the DevTools protocol's emulated one gives the canvas the
+/// wrong size). The view and the panels keep room, and Tab brings each focused control into
+/// its panel's view.
+async function atTwiceTheZoom(_, summary) {
+  const zoomed = await chromium.launchPersistentContext(mkdtempSync(join(tmpdir(), 'bvhlab-zoom-')), {
+    executablePath,
+    headless: true,
+    // The window's height holds the headless browser's bars (87 px) above the page's 360.
+    args: [...BASE_ARGS, '--window-size=640,447', '--force-device-scale-factor=2'],
+    viewport: null,
+  });
+  try {
+    const page = zoomed.pages()[0] ?? (await zoomed.newPage());
+    await page.goto(new URL('index.html?fresh=1', url).href);
+    await mirrored(page);
+    const size = await page.evaluate(() => [innerWidth, innerHeight, devicePixelRatio]);
+    check(size.join() === '640,360,2', `a 640x360 window at 2 device pixels per CSS pixel: ${size}`);
+    const { report: r } = await waitForReport(page, (x) => x.ready, TIMEOUT_MS, 'ready');
+    const [x0, y0, x1, y1] = r.canvas;
+    check(x1 - x0 >= 640 * 0.45 && y1 - y0 >= 120, `the view keeps room: ${r.canvas}`);
+    // The fifth lesson's button is below the panel's fold at first.
+    await tabTo(page, (n) => n.role === 'button' && n.name.startsWith('5. '), 'the fifth lesson');
+    await page.waitForTimeout(600);
+    const shown = await page.evaluate(() => {
+      const b = document.activeElement.getBoundingClientRect();
+      return [b.top, b.bottom];
+    });
+    check(shown[0] >= 0 && shown[1] <= 360 - 40, `the focused lesson button is in view, above the status line: ${shown}`);
+    await page.screenshot({ path: join(outDir, 'a11y-zoom-200.png') });
+    summary.push(`200% zoom (640x360 CSS px): the view ${Math.round(x1 - x0)}x${Math.round(y1 - y0)}, the focused fifth lesson scrolled into view`);
+  } finally {
+    await zoomed.close();
+  }
+}
+
 const context = await chromium.launchPersistentContext(mkdtempSync(join(tmpdir(), 'bvhlab-a11y-')), {
   executablePath,
   headless: true,
@@ -338,6 +377,7 @@ for (const [name, test] of [
   ['a lesson from the tree', aLessonFromTheTree],
   ['stepping and 3D', steppingAnd3d],
   ['embedded', tabThroughAnEmbeddedLab],
+  ['200% zoom', atTwiceTheZoom],
 ]) {
   try {
     await test(context, summary);
@@ -349,5 +389,5 @@ for (const [name, test] of [
 }
 await context.close();
 for (const line of summary) console.log(`  ${line}`);
-console.log(`e2e a11y: ${4 - failures.length} passed, ${failures.length} failed`);
+console.log(`e2e a11y: ${5 - failures.length} passed, ${failures.length} failed`);
 process.exit(failures.length ? 1 : 0);

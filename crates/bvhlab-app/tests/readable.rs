@@ -312,3 +312,20 @@ fn the_focus_outline_is_3_to_1_on_the_panels_in_both_themes() {
         }
     }
 }
+
+/// A 1280x720 laptop at 200% browser zoom is a 640x360 window to the lab (WCAG 1.4.4): the
+/// view keeps room to work in beside the panels (half the width, a third of the height),
+/// and the controls still show (the tab row and a lesson button).
+#[test]
+fn at_200_percent_zoom_on_a_laptop_the_view_and_the_controls_both_keep_room() {
+    let h = stepped(vec2(640.0, 360.0));
+    let view = h.state().canvas_screen().rect;
+    assert!(
+        view.width() >= 640.0 * 0.45 && view.height() >= 360.0 / 3.0,
+        "the view is {}x{} at 640x360",
+        view.width(),
+        view.height()
+    );
+    let tab = h.get_by_label("Lessons and controls").rect();
+    assert!(tab.max.x <= view.min.x + 1.0, "the tabs sit beside the view");
+}
