@@ -327,5 +327,8 @@ fn at_200_percent_zoom_on_a_laptop_the_view_and_the_controls_both_keep_room() {
         view.height()
     );
     let tab = h.get_by_label("Lessons and controls").rect();
-    assert!(tab.max.x <= view.min.x + 1.0, "the tabs sit beside the view");
+    assert!(
+        tab.max.x <= view.min.x + 1.0,
+        "the tabs sit beside the view"
+    );
 }
