@@ -85,7 +85,8 @@ pub(super) fn handle_keys(
     }
     let lab = cx.lab.two();
     let (cycle, arrows, fine) = ui.input(|i| {
-        let arrow = |key, v: Vec2| if i.key_pressed(key) { v } else { Vec2::ZERO };
+        // Every press counts: a slow frame (software rendering) may get several.
+        let arrow = |key, v: Vec2| v * i.num_presses(key) as f32;
         let arrows = arrow(egui::Key::ArrowLeft, Vec2::NEG_X)
             + arrow(egui::Key::ArrowRight, Vec2::X)
             + arrow(egui::Key::ArrowUp, Vec2::Y)

@@ -10,6 +10,7 @@ use egui::{Pos2, Rect, Response};
 
 use crate::model::Action3d;
 use crate::model::lab3d::Lab3d;
+use crate::model::orbit_camera::OrbitCamera;
 use crate::model::tools::Tool3d;
 use crate::ui_state::Cx;
 
@@ -129,15 +130,21 @@ pub fn handle_input(cx: &mut Cx<'_>, response: &Response, rect: Rect) {
     }
     if response.clicked()
         && let Some(pos) = response.interact_pointer_pos()
-        && let Some(action) = click(lab, local(rect, pos), size)
+        && let Some(action) = click(lab, &lab.camera, local(rect, pos), size)
     {
         cx.act(action);
     }
 }
 
-/// A click: casts a ray from the camera, or puts the point where the click meets the mesh.
-pub(super) fn click(lab: &Lab3d, pixel: Vec2, size: Vec2) -> Option<Action3d> {
-    let ray = lab.camera.ray_through(pixel, size)?;
+/// A click at `pixel` of a view of `size` seen through `camera`: casts a ray from the camera,
+/// or puts the point where the click meets the mesh.
+pub(super) fn click(
+    lab: &Lab3d,
+    camera: &OrbitCamera,
+    pixel: Vec2,
+    size: Vec2,
+) -> Option<Action3d> {
+    let ray = camera.ray_through(pixel, size)?;
     let ray = Ray3::new(ray.origin(), ray.dir().normalize_or_zero()).ok()?;
     match lab.tool {
         Tool3d::Ray => Some(Action3d::SetRay(Some(ray))),
@@ -151,7 +158,7 @@ pub(super) fn click(lab: &Lab3d, pixel: Vec2, size: Vec2) -> Option<Action3d> {
             // Just off the surface, on the camera's side, so the distance is not zero.
             let at = match hit {
                 Some(h) => ray.at(h.t) - ray.dir() * size * 0.03,
-                None => lab.camera.target,
+                None => camera.target,
             };
             Some(Action3d::SetPoint(Some(at)))
         }

@@ -30,7 +30,8 @@ pub(super) fn handle_keys(cx: &mut Cx<'_>, ui: &egui::Ui, rect: Rect, view: egui
     }
     let (turn, zoom, enter) = ui.input(|i| {
         let step = if i.modifiers.shift { FINE_TURN } else { TURN };
-        let press = |key, v: Vec2| if i.key_pressed(key) { v } else { Vec2::ZERO };
+        // Every press counts: a slow frame (software rendering) may get several.
+        let press = |key, v: Vec2| v * i.num_presses(key) as f32;
         let turn = press(Key::ArrowLeft, Vec2::NEG_X)
             + press(Key::ArrowRight, Vec2::X)
             + press(Key::ArrowUp, Vec2::NEG_Y)
@@ -53,9 +54,11 @@ pub(super) fn handle_keys(cx: &mut Cx<'_>, ui: &egui::Ui, rect: Rect, view: egui
     if camera != lab.camera {
         cx.act(Action3d::SetCamera(camera));
     }
+    // Through the camera as turned this frame (a fast Enter after an arrow comes in the same
+    // frame as it).
     if enter && rect.is_positive() {
         let size = Vec2::new(rect.width(), rect.height());
-        if let Some(action) = click(lab, size * 0.5, size) {
+        if let Some(action) = click(lab, &camera, size * 0.5, size) {
             cx.act(action);
         }
     }
