@@ -28,8 +28,9 @@ pub fn drawing(ctx: &egui::Context, id: egui::Id, dimension: Dimension, report: 
              the Ray and point panel), H shows the heat map"
         }
     };
-    let summary = report.text();
+    // Only on a frame that builds the accessibility tree (the closure runs only then).
     ctx.accesskit_node_builder(id, |node| {
+        let summary = report.text();
         node.set_role(Role::Canvas);
         node.set_label(name);
         node.set_description(format!(

@@ -24,8 +24,9 @@ pub(super) fn tree<V: Vector>(
     highlight: &TreeHighlight<'_>,
     summary: &str,
 ) {
-    let listed = listed(outline, layout, highlight);
+    // Nothing is worked out on a frame that builds no accessibility tree.
     let described = ui.ctx().accesskit_node_builder(id, |node| {
+        let listed = listed(outline, layout, highlight);
         node.set_role(Role::Tree);
         node.set_label("Tree diagram");
         let shown = if listed.len() < outline.len() {
@@ -37,10 +38,11 @@ pub(super) fn tree<V: Vector>(
             String::new()
         };
         node.set_description(format!("{summary}{shown}."));
+        listed
     });
-    if described.is_none() {
+    let Some(listed) = described else {
         return;
-    }
+    };
     for index in listed {
         let node = &outline[index];
         let mark = highlight

@@ -7,7 +7,8 @@
 //!   and keys gathered since the last frame (`input_hook`).
 //! - The page is brought up to date at most every [`MIN_GAP_MS`] (a screen reader reads
 //!   slower than the lab animates), and at once after the person did something; a timer
-//!   brings it up to date when the lab stops drawing.
+//!   brings it up to date when the lab stops drawing. egui builds its tree only on the
+//!   passes the page will take it from, so the passes between cost nothing more.
 //! - The canvas leaves the Tab order: Tab moves among the elements as on any page, so it
 //!   leaves the lab after its last one, and Shift+Tab before its first. Escape leaves from
 //!   anywhere ([`crate::a11y::keys`]). A Tab pressed while the canvas has the focus (after a
@@ -141,8 +142,25 @@ impl egui::Plugin for MirrorPlugin {
         "bvh-lab page mirror"
     }
 
-    fn input_hook(&mut self, _ctx: &egui::Context, input: &mut egui::RawInput) {
-        INBOX.with(|i| input.events.append(&mut i.borrow_mut().events));
+    fn input_hook(&mut self, ctx: &egui::Context, input: &mut egui::RawInput) {
+        let prompt = INBOX.with(|i| {
+            let mut inbox = i.borrow_mut();
+            input.events.append(&mut inbox.events);
+            inbox.prompt
+        });
+        // egui builds its tree only on the passes whose tree the page takes (after a person's
+        // action, or once MIN_GAP_MS have passed): the passes between cost what they cost
+        // without a mirror. A pass skipped asks for one when the gap is over, so that the
+        // last change still reaches the page when the lab then stops drawing.
+        let since = with_state(|s| now() - s.last_apply).unwrap_or(f64::INFINITY);
+        if prompt || since >= MIN_GAP_MS {
+            ctx.enable_accesskit();
+        } else {
+            ctx.disable_accesskit();
+            ctx.request_repaint_after(std::time::Duration::from_secs_f64(
+                (MIN_GAP_MS - since) / 1000.0,
+            ));
+        }
         with_state(|s| {
             // eframe tells egui whether the canvas has the focus; the lab has it too when one
             // of its elements does (egui then draws the focus, and its keys act).
