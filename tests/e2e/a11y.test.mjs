@@ -141,10 +141,7 @@ async function theTree(context, summary) {
   const page = await context.newPage({ viewport: { width: 1280, height: 720 } });
   await page.goto(new URL('index.html?fresh=1', url).href);
   await mirrored(page);
-  const tree = await axTree(page);
-  const unnamed = tree.filter((n) => CONTROLS.has(n.role) && !n.name.trim());
-  check(unnamed.length === 0, `controls without a name: ${JSON.stringify(unnamed)}`);
-  for (const [role, name] of [
+  const expected = [
     ['button', 'Lessons'],
     ['button', '1. §1 Queries: why not test every primitive?'],
     ['checkbox', 'Show the bounding volumes'],
@@ -153,7 +150,17 @@ async function theTree(context, summary) {
     ['spinbutton', 'k nearest'],
     ['button', 'Undo'],
     ['tree', 'Tree diagram'],
-  ]) {
+  ];
+  // The page is brought up to date every 200 ms at most: the lab may still be settling.
+  let tree = await axTree(page);
+  try {
+    tree = await untilTree(page, (t) => expected.every(([role, name]) => named(t, role, name)), 'every control expected');
+  } catch {
+    // Fails below, naming what is missing.
+  }
+  const unnamed = tree.filter((n) => CONTROLS.has(n.role) && !n.name.trim());
+  check(unnamed.length === 0, `controls without a name: ${JSON.stringify(unnamed)}`);
+  for (const [role, name] of expected) {
     check(named(tree, role, name), `no ${role} named "${name}" in the accessibility tree`);
   }
   const combo = tree.find((n) => n.role === 'button' && n.name.startsWith('Preset'));

@@ -150,16 +150,12 @@ impl egui::Plugin for MirrorPlugin {
         });
         // egui builds its tree only on the passes whose tree the page takes (after a person's
         // action, or once MIN_GAP_MS have passed): the passes between cost what they cost
-        // without a mirror. A pass skipped asks for one when the gap is over, so that the
-        // last change still reaches the page when the lab then stops drawing.
+        // without a mirror (see `output_hook` for the pass that follows a skipped one).
         let since = with_state(|s| now() - s.last_apply).unwrap_or(f64::INFINITY);
         if prompt || since >= MIN_GAP_MS {
             ctx.enable_accesskit();
         } else {
             ctx.disable_accesskit();
-            ctx.request_repaint_after(std::time::Duration::from_secs_f64(
-                (MIN_GAP_MS - since) / 1000.0,
-            ));
         }
         with_state(|s| {
             // eframe tells egui whether the canvas has the focus; the lab has it too when one
@@ -174,8 +170,18 @@ impl egui::Plugin for MirrorPlugin {
         });
     }
 
-    fn output_hook(&mut self, _ctx: &egui::Context, output: &mut egui::FullOutput) {
+    fn output_hook(&mut self, ctx: &egui::Context, output: &mut egui::FullOutput) {
         let Some(update) = output.platform_output.accesskit_update.take() else {
+            // A pass without the tree may have changed the lab: a pass with it once the gap
+            // is over, so that the change reaches the page even if the lab then stops
+            // drawing. (Asked here, after the pass: egui tells eframe of a repaint only when
+            // it is sooner than one already asked for, and before a pass the immediate
+            // repaint that started it still is; asked then, it was lost.)
+            if let Some(since) = with_state(|s| now() - s.last_apply) {
+                ctx.request_repaint_after(std::time::Duration::from_secs_f64(
+                    (MIN_GAP_MS - since).max(0.0) / 1000.0,
+                ));
+            }
             return;
         };
         with_state(|s| s.mirror.update(update));
