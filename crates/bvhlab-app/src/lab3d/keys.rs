@@ -37,13 +37,9 @@ pub(super) fn handle_keys(cx: &mut Cx<'_>, ui: &egui::Ui, rect: Rect, view: egui
             + press(Key::ArrowUp, Vec2::NEG_Y)
             + press(Key::ArrowDown, Vec2::Y);
         let closer =
-            i.key_pressed(Key::Plus) || i.key_pressed(Key::Equals) || i.key_pressed(Key::PageUp);
-        let farther = i.key_pressed(Key::Minus) || i.key_pressed(Key::PageDown);
-        let zoom = match (closer, farther) {
-            (true, false) => 1.0 / ZOOM,
-            (false, true) => ZOOM,
-            _ => 1.0,
-        };
+            i.num_presses(Key::Plus) + i.num_presses(Key::Equals) + i.num_presses(Key::PageUp);
+        let farther = i.num_presses(Key::Minus) + i.num_presses(Key::PageDown);
+        let zoom = ZOOM.powi(farther as i32 - closer as i32);
         (turn * step, zoom, i.key_pressed(Key::Enter))
     });
     let lab = cx.lab.three();
