@@ -57,6 +57,21 @@ fn frame_then(
         .sum()
 }
 
+/// Draws a ray from the canvas's left edge to the middle of its right edge, and shows a
+/// frame with it; returns the ray.
+fn ray_across(ctx: &egui::Context, app: &mut LabApp) -> RayHandles {
+    let screen = app.canvas_screen();
+    let rect = screen.rect;
+    let ray = RayHandles {
+        origin: screen.to_world(pos2(rect.left() + 20.0, rect.center().y)),
+        target: screen.to_world(rect.right_center()),
+    };
+    app.apply(Action2d::SetRay(Some(ray)))
+        .expect("a ray across the canvas");
+    frame(ctx, app);
+    ray
+}
+
 fn dragging_a_ray(c: &mut Criterion) {
     let mut group = c.benchmark_group("frame_10k_segments_ray_drag");
     for kind in [
@@ -74,16 +89,9 @@ fn dragging_a_ray(c: &mut Criterion) {
         // Two frames for layout, fitting the view and the first build.
         frame(&ctx, &mut app);
         frame(&ctx, &mut app);
-        let rect = app.canvas_screen().rect;
-        let origin = app
-            .canvas_screen()
-            .to_world(pos2(rect.left() + 20.0, rect.center().y));
-        let target = app.canvas_screen().to_world(rect.right_center());
         // The first ray before timing, so that the check below holds when a filter skips
         // this benchmark.
-        app.apply(Action2d::SetRay(Some(RayHandles { origin, target })))
-            .expect("a ray across the canvas");
-        frame(&ctx, &mut app);
+        let RayHandles { origin, target } = ray_across(&ctx, &mut app);
         let mut step = 0u32;
         group.bench_function(kind.label(), |b| {
             b.iter(|| {
@@ -135,16 +143,7 @@ impl Player {
         let mut app = LabApp::with([Action2d::LoadPreset(Preset::TenThousand).into()]);
         frame(&ctx, &mut app);
         frame(&ctx, &mut app);
-        let rect = app.canvas_screen().rect;
-        let ray = RayHandles {
-            origin: app
-                .canvas_screen()
-                .to_world(pos2(rect.left() + 20.0, rect.center().y)),
-            target: app.canvas_screen().to_world(rect.right_center()),
-        };
-        app.apply(Action2d::SetRay(Some(ray)))
-            .expect("a ray across the canvas");
-        frame(&ctx, &mut app);
+        ray_across(&ctx, &mut app);
         let steps = app.lab().steps();
         assert!(steps >= FRAMES_PER_RUN, "{steps} steps to play");
         Self {

@@ -6,9 +6,7 @@
 
 use std::cell::RefCell;
 
-use wasm_bindgen::JsCast;
-use wasm_bindgen::prelude::*;
-
+use super::timer::{after_ms, now_ms};
 use crate::report::speech::news;
 
 /// The shortest time between two announcements, in milliseconds.
@@ -38,9 +36,7 @@ pub fn tell(sentences: Vec<String>) {
 }
 
 fn tell_now_or_later(from_timer: bool) {
-    let t = web_sys::window()
-        .and_then(|w| w.performance())
-        .map_or(0.0, |p| p.now());
+    let t = now_ms();
     let text = LIVE.with(|l| {
         let mut l = l.borrow_mut();
         if from_timer {
@@ -74,14 +70,5 @@ fn tell_now_or_later(from_timer: bool) {
 
 /// Calls [`tell_now_or_later`] in `ms` milliseconds; whether the timer is set.
 fn set_timer(ms: f64) -> bool {
-    let Some(window) = web_sys::window() else {
-        return false;
-    };
-    let callback = Closure::once_into_js(|| tell_now_or_later(true));
-    window
-        .set_timeout_with_callback_and_timeout_and_arguments_0(
-            callback.unchecked_ref(),
-            ms.ceil() as i32,
-        )
-        .is_ok()
+    after_ms(ms, || tell_now_or_later(true))
 }

@@ -19,6 +19,7 @@ use crate::report::Report;
 mod a11y;
 mod files;
 mod live;
+mod timer;
 
 use files::deliver;
 pub use files::{News, copy_text, pick_file, read_dropped, take_news};

@@ -22,9 +22,8 @@ use std::cell::RefCell;
 use std::collections::HashMap;
 
 use egui::accesskit::NodeId;
-use wasm_bindgen::JsCast;
-use wasm_bindgen::prelude::*;
 
+use super::timer::{after_ms, now_ms};
 use crate::a11y::mirror::Mirror;
 
 mod dom;
@@ -151,7 +150,7 @@ impl egui::Plugin for MirrorPlugin {
         // egui builds its tree only on the passes whose tree the page takes (after a person's
         // action, or once MIN_GAP_MS have passed): the passes between cost what they cost
         // without a mirror (see `output_hook` for the pass that follows a skipped one).
-        let since = with_state(|s| now() - s.last_apply).unwrap_or(f64::INFINITY);
+        let since = with_state(|s| now_ms() - s.last_apply).unwrap_or(f64::INFINITY);
         if prompt || since >= MIN_GAP_MS {
             ctx.enable_accesskit();
         } else {
@@ -177,7 +176,7 @@ impl egui::Plugin for MirrorPlugin {
             // drawing. (Asked here, after the pass: egui tells eframe of a repaint only when
             // it is sooner than one already asked for, and before a pass the immediate
             // repaint that started it still is; asked then, it was lost.)
-            if let Some(since) = with_state(|s| now() - s.last_apply) {
+            if let Some(since) = with_state(|s| now_ms() - s.last_apply) {
                 ctx.request_repaint_after(std::time::Duration::from_secs_f64(
                     (MIN_GAP_MS - since).max(0.0) / 1000.0,
                 ));
@@ -194,13 +193,6 @@ fn with_state<R>(f: impl FnOnce(&mut State) -> R) -> Option<R> {
     STATE.with(|s| s.borrow_mut().as_mut().map(f))
 }
 
-/// Milliseconds since the page opened.
-fn now() -> f64 {
-    web_sys::window()
-        .and_then(|w| w.performance())
-        .map_or(0.0, |p| p.now())
-}
-
 /// Applies the mirror's changes to the page, unless the last update was under [`MIN_GAP_MS`]
 /// ago and nobody acted since (`timer`: called by the timer, which then always applies); a
 /// timer then catches up later.
@@ -209,7 +201,7 @@ fn bring_up_to_date(timer: bool) {
         if timer {
             s.timer = false;
         }
-        let t = now();
+        let t = now_ms();
         let prompt = INBOX.with(|i| std::mem::take(&mut i.borrow_mut().prompt));
         if !timer && !prompt && t - s.last_apply < MIN_GAP_MS {
             if !s.timer {
@@ -236,14 +228,7 @@ fn bring_up_to_date(timer: bool) {
 
 /// Calls [`bring_up_to_date`] in `ms` milliseconds.
 fn set_timer(ms: f64) {
-    let Some(window) = web_sys::window() else {
-        return;
-    };
-    let callback = Closure::once_into_js(|| bring_up_to_date(true));
-    if window
-        .set_timeout_with_callback_and_timeout_and_arguments_0(callback.unchecked_ref(), ms as i32)
-        .is_err()
-    {
+    if !after_ms(ms, || bring_up_to_date(true)) {
         with_state(|s| s.timer = false);
     }
 }
