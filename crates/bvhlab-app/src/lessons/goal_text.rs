@@ -250,3 +250,31 @@ pub fn value_text(value: crate::model::goal::Value) -> String {
         Value::Word(Word::Split(v)) => stored(serde_json::to_value(SplitName::from(v))),
     }
 }
+
+/// A goal's value now as the lesson panel shows it beside the goal, with what its target
+/// stands for now where the goal's text does not say it: `now 81 of 199 nodes, 41%`,
+/// `now 12, the second structure 15`, `now step 3 of 40`, or `unknown yet`.
+pub fn now_text(goal: &Goal, lab: &crate::model::Lab) -> String {
+    use crate::model::goal::Value;
+    let Some(value) = goal.now(lab) else {
+        return "unknown yet".to_owned();
+    };
+    let now = value_text(value);
+    match (goal.target, value, goal.target_now(lab)) {
+        (Target::Percent(_), Value::Number(n), _) => match goal.whole(lab) {
+            Some(whole) if whole > 0.0 => {
+                let of = match goal.quantity {
+                    Quantity::PrimitivesTested | Quantity::Primitives => "primitives",
+                    _ => "nodes",
+                };
+                format!("now {now} of {whole} {of}, {:.0}%", 100.0 * n / whole)
+            }
+            _ => format!("now {now}"),
+        },
+        (Target::Compare, _, Some(other)) => {
+            format!("now {now}, the second structure {}", value_text(other))
+        }
+        (Target::End, _, Some(end)) => format!("now step {now} of {}", value_text(end)),
+        _ => format!("now {now}"),
+    }
+}

@@ -164,28 +164,60 @@ impl Goal {
         }
     }
 
-    fn holds_in<P: LabPrimitive>(&self, half: &Half<P>, primitives: usize) -> bool {
-        let Some(value) = read(half, 0, self.quantity, primitives) else {
-            return false;
-        };
-        let target = match self.target {
+    /// What the target stands for now (`None` while unknown): a percentage as a count, the
+    /// last playback step, the second structure's value. A student reads it beside the
+    /// value ("now 81 of 199 nodes, 41%"), so that a count is never shown against a share.
+    pub fn target_now(&self, lab: &Lab) -> Option<Value> {
+        if self.quantity.of_lab() {
+            return match self.target {
+                Target::Number(n) => Some(Value::Number(n)),
+                _ => None,
+            };
+        }
+        match lab.dimension() {
+            Dimension::Two => self.target_in(&lab.two().half, lab.two().prims().segments.len()),
+            Dimension::Three => self.target_in(&lab.three().half, lab.three().triangles().len()),
+        }
+    }
+
+    /// The count a percentage is of now: the structure's nodes, or the scene's primitives
+    /// for primitive counts (`None` while unknown, or when the target is no percentage).
+    pub fn whole(&self, lab: &Lab) -> Option<f64> {
+        if self.quantity.of_lab() || !matches!(self.target, Target::Percent(_)) {
+            return None;
+        }
+        match lab.dimension() {
+            Dimension::Two => self.whole_in(&lab.two().half, lab.two().prims().segments.len()),
+            Dimension::Three => self.whole_in(&lab.three().half, lab.three().triangles().len()),
+        }
+    }
+
+    fn whole_in<P: LabPrimitive>(&self, half: &Half<P>, primitives: usize) -> Option<f64> {
+        match self.quantity {
+            Quantity::PrimitivesTested | Quantity::Primitives => Some(primitives as f64),
+            _ => match read(half, 0, Quantity::Nodes, primitives) {
+                Some(Value::Number(n)) => Some(n),
+                _ => None,
+            },
+        }
+    }
+
+    fn target_in<P: LabPrimitive>(&self, half: &Half<P>, primitives: usize) -> Option<Value> {
+        Some(match self.target {
             Target::Number(n) => Value::Number(n),
             Target::Word(w) => Value::Word(w),
             Target::End => Value::Number(half.steps() as f64),
-            Target::Percent(p) => {
-                let whole = match self.quantity {
-                    Quantity::PrimitivesTested | Quantity::Primitives => primitives,
-                    _ => match read(half, 0, Quantity::Nodes, primitives) {
-                        Some(Value::Number(n)) => n as usize,
-                        _ => return false,
-                    },
-                };
-                Value::Number(p / 100.0 * whole as f64)
-            }
-            Target::Compare => match read(half, 1, self.quantity, primitives) {
-                Some(v) => v,
-                None => return false,
-            },
+            Target::Percent(p) => Value::Number(p / 100.0 * self.whole_in(half, primitives)?),
+            Target::Compare => read(half, 1, self.quantity, primitives)?,
+        })
+    }
+
+    fn holds_in<P: LabPrimitive>(&self, half: &Half<P>, primitives: usize) -> bool {
+        let (Some(value), Some(target)) = (
+            read(half, 0, self.quantity, primitives),
+            self.target_in(half, primitives),
+        ) else {
+            return false;
         };
         compare(value, self.comparison, target)
     }
@@ -255,7 +287,11 @@ fn read<P: LabPrimitive>(
     }
     let lane = half.lane_at(lane);
     let number = |n: u64| Some(Value::Number(n as f64));
-    let recording = lane.recorded();
+    // While a build runs, the recording and its marks are of the structure before it (a
+    // mesh's old tree, another leaf size): an answer from there must not reach the goal of
+    // a step that has just opened.
+    let building = lane.job.is_some();
+    let recording = lane.recorded().filter(|_| !building);
     match quantity {
         Quantity::Structure => Some(Value::Word(Word::Structure(lane.settings.kind))),
         Quantity::Task => Some(Value::Word(Word::Task(half.task))),
@@ -275,7 +311,10 @@ fn read<P: LabPrimitive>(
         // Read from the lab, not a half (see `Goal::now`).
         Quantity::Predicted | Quantity::SeparatingAxes | Quantity::Tightness(_) => None,
         Quantity::Step => number(half.playback.shown(half.steps()) as u64),
-        Quantity::Nodes => lane.marks().map(|m| Value::Number(m.nodes.len() as f64)),
+        Quantity::Nodes => lane
+            .marks()
+            .filter(|_| !building)
+            .map(|m| Value::Number(m.nodes.len() as f64)),
         Quantity::NodesVisited => number(recording?.cost.nodes_visited),
         Quantity::BoundTests => number(recording?.cost.bound_tests),
         Quantity::PrimitivesTested => number(recording?.cost.prim_tests),

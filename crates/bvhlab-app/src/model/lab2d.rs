@@ -209,6 +209,14 @@ impl Lab2d {
     /// A preset is a section of the lecture: it starts clean, so the last section's
     /// overlays (the ray and point, the bounding volumes, the slab test, the two SAT boxes)
     /// do not bury the next idea. The bounding-volume preset shows its volumes.
+    /// Everything but the scene's undo history back to how [`Lab2d::with_preset`] opens the
+    /// preset chosen (a lesson step's start: [`Lab::apply_lesson`](super::Lab)).
+    pub(super) fn start_afresh(&mut self) {
+        let history = std::mem::take(&mut self.history);
+        *self = Self::with_preset(self.preset);
+        self.history = history;
+    }
+
     fn load_preset(&mut self, preset: Preset) {
         let (scene, settings) = preset.build();
         let old = std::mem::replace(&mut self.preset, preset);

@@ -141,6 +141,16 @@ impl Default for Lab3d {
 }
 
 impl Lab3d {
+    /// Back to how the 3D half opens, its mesh to be loaded afresh (a lesson step's start,
+    /// before its setup names the mesh); the mesh revisions keep counting, so that nothing
+    /// built on the mesh shown is taken for the new one's.
+    pub(super) fn start_afresh(&mut self) {
+        *self = Self {
+            revisions: self.revisions,
+            ..Self::default()
+        };
+    }
+
     /// Whether a load or a build is under way (the caller keeps repainting).
     pub fn busy(&self) -> bool {
         self.pending.is_some() || self.half.lanes().any(|l| l.job.is_some())

@@ -111,7 +111,8 @@ impl Lab {
         // The lesson is put back only once the step's state is in place: its actions must
         // not count as reaching the goal of the step the student is leaving.
         let source = format!("the lesson \"{}\", step {}", lesson.name, step + 1);
-        let problems = self.apply_setup(&shown.setup, &source);
+        let mut problems = self.start_afresh(&shown.setup, &source);
+        problems.extend(self.apply_setup(&shown.setup, &source));
         self.lesson = Some(LessonProgress {
             lesson,
             step,
@@ -122,6 +123,27 @@ impl Lab {
         } else {
             Note::Say(problems.join("; "))
         })
+    }
+
+    /// Puts the half `setup` shows back to how it starts (the preset's or the mesh's
+    /// defaults: one structure, no comparison, no ray or point, the first playback step,
+    /// the default drawing switches and camera), so that a step starts the same whatever
+    /// came before it: a comparison or a leaf size left by an earlier step must not show
+    /// in this one, nor an answer recorded before it count as this step's. The 2D scene's
+    /// undo history stays (the student's own drawing is one Undo away), and so does
+    /// Predict's switch (the student's choice). Returns what could not be done.
+    fn start_afresh(&mut self, setup: &Setup, source: &str) -> Vec<String> {
+        if let Some(preset) = setup.preset {
+            // Loading the preset by its action records the student's scene for Undo.
+            if let Err(e) = self.apply(super::Action2d::LoadPreset(preset).into()) {
+                return vec![format!("{source}: {e}")];
+            }
+            self.two.start_afresh();
+        }
+        if setup.mesh.is_some() {
+            self.three.start_afresh();
+        }
+        Vec::new()
     }
 
     /// Marks the step shown's goal reached once all its comparisons hold (after every

@@ -141,6 +141,9 @@ impl Lab {
         if let Some(task) = setup.task {
             apply(self, HalfAction::SetTask(task).into(), &mut problems);
         }
+        if let Some(tool) = setup.task.and_then(|task| tool_for(task, three)) {
+            apply(self, tool, &mut problems);
+        }
         if let Some(variant) = setup.variant {
             apply(self, HalfAction::SetVariant(variant).into(), &mut problems);
         }
@@ -149,6 +152,24 @@ impl Lab {
         }
         problems
     }
+}
+
+/// Picks the tool a task's question is moved with in the view: the ray's for a ray task,
+/// the point's for a point task (none for a build: nothing on the canvas moves it). A lesson
+/// that asks for a ray while the Select tool is on makes the student's first drag move a
+/// shape instead.
+fn tool_for(task: Task, three: bool) -> Option<Action> {
+    let ray = match task {
+        Task::FirstHit | Task::AnyHit | Task::AllHits => true,
+        Task::Nearest | Task::Range => false,
+        Task::Build => return None,
+    };
+    Some(match (three, ray) {
+        (false, true) => Action2d::SetTool(Tool::Ray).into(),
+        (false, false) => Action2d::SetTool(Tool::Point).into(),
+        (true, true) => Action3d::SetTool(super::tools::Tool3d::Ray).into(),
+        (true, false) => Action3d::SetTool(super::tools::Tool3d::Point).into(),
+    })
 }
 
 /// A 2D ray from `x,y,dx,dy`, or what is wrong with them (to follow "the ray").

@@ -102,10 +102,7 @@ pub fn lessons(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
                 };
                 ui.label(RichText::new("•").color(color));
                 ui.label(RichText::new(&goal.text).monospace());
-                let now = goal.now(cx.lab).map_or_else(
-                    || "unknown yet".to_owned(),
-                    |value| format!("now {}", crate::lessons::goal_text::value_text(value)),
-                );
+                let now = crate::lessons::goal_text::now_text(goal, cx.lab);
                 ui.label(RichText::new(format!("({now}: {mark})")).color(color));
             });
         }
