@@ -128,7 +128,7 @@ fn query_shapes(
     }
     if lab.display.query_marks && !building(lab) {
         draw_marks(lab, this, lab.display.max_depth, wp);
-        overlay::draw_step(lab, this, lab.half.playback.at_end, wp);
+        overlay::draw_step(lab, this, lab.half.playback.at_end, wp, painter);
     }
     if let Some(node) = hovered {
         overlay::draw_hovered(lab, this, node, wp);
@@ -331,7 +331,9 @@ fn draw_queries(
         if let Ok(ray) = handles.ray() {
             let end = visible_end(&ray, wp.screen);
             wp.line(ray.origin(), end, Stroke::new(2.0, colors::QUERY));
+            // All hits: each one the panel lists; otherwise the first hit.
             if live
+                && !overlay::draw_all_hits(lane, wp, fonts)
                 && let Some(hit) = lane
                     .ray_outcome
                     .as_ref()
