@@ -26,6 +26,10 @@ pub mod colors {
     pub const PRUNED: Color32 = Color32::from_rgb(250, 160, 40);
     /// Structure outlines not touched by the query.
     pub const STRUCTURE: Color32 = Color32::from_rgba_premultiplied(110, 130, 190, 150);
+    /// The splitting planes (lines in 2D) of a k-d tree, quadtree or BSP tree: a saturated
+    /// blue, drawn dashed ([`SPLIT_DASH`](super::SPLIT_DASH)), so that they are told from
+    /// the scene's solid grey segments by their pattern as well as their colour.
+    pub const SPLIT: Color32 = Color32::from_rgb(64, 128, 255);
     /// Primitives the query tested exactly.
     pub const TESTED: Color32 = Color32::from_rgb(255, 140, 0);
     /// The node the playback is at.
@@ -76,6 +80,12 @@ pub mod colors {
     }
 }
 
+/// The split planes' dashes and gaps, in screen points.
+pub const SPLIT_DASH: (f32, f32) = (6.0, 4.0);
+
+/// What the legend names a space partition's splitting planes (lines in 2D).
+pub const SPLIT_NAME: &str = "split plane (dashed)";
+
 /// Turns world geometry into egui shapes in screen space, collected so that the caller can
 /// paint them now or tessellate them once and reuse the mesh (see `lab2d::layer`).
 pub struct WorldPainter<'a> {
@@ -103,6 +113,13 @@ impl<'a> WorldPainter<'a> {
     pub fn line(&mut self, a: Vec2, b: Vec2, stroke: Stroke) {
         let seg = Shape::line_segment([self.screen.to_screen(a), self.screen.to_screen(b)], stroke);
         self.add(seg);
+    }
+
+    /// A dashed segment: dashes and gaps of [`SPLIT_DASH`] screen points.
+    pub fn dashed_line(&mut self, a: Vec2, b: Vec2, stroke: Stroke) {
+        let ends = [self.screen.to_screen(a), self.screen.to_screen(b)];
+        let (dash, gap) = SPLIT_DASH;
+        self.add(Shape::Vec(Shape::dashed_line(&ends, stroke, dash, gap)));
     }
 
     /// A dot of `radius` screen points.
@@ -302,11 +319,18 @@ pub fn legend_with(
         Color32::from_black_alpha(170),
     );
     for &(color, label) in entries.iter().chain(more) {
-        painter.rect_filled(
-            egui::Rect::from_min_size(at, egui::vec2(10.0, 10.0)),
-            2.0,
-            color,
-        );
+        let swatch = egui::Rect::from_min_size(at, egui::vec2(10.0, 10.0));
+        if color == colors::SPLIT {
+            // The split planes' entry is drawn as they are: a dashed line.
+            painter.extend(Shape::dashed_line(
+                &[swatch.left_center(), swatch.right_center()],
+                Stroke::new(2.0, color),
+                3.0,
+                2.0,
+            ));
+        } else {
+            painter.rect_filled(swatch, 2.0, color);
+        }
         painter.text(
             at + egui::vec2(16.0, 5.0),
             Align2::LEFT_CENTER,

@@ -23,6 +23,7 @@ mod readable;
 mod refit;
 mod render3d;
 mod shaders;
+mod shown_as_said;
 mod stepping;
 mod tree_diagram;
 mod ui;

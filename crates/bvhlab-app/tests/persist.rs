@@ -116,7 +116,7 @@ fn dressed(preset: Preset, variety: usize, compare: bool) -> LabApp {
         ..two.display
     };
     let volumes = VolumeToggles {
-        ritter: true,
+        ritter: false,
         hull: false,
         ..two.volumes
     };

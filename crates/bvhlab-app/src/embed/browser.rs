@@ -18,23 +18,58 @@ pub struct ReplyTo {
     origin: String,
 }
 
-/// The origins allowed to script the lab: its own and those the address names.
+/// The origins allowed to script the lab (its own and those the address names), and what
+/// it knows of its parent's origin ([`super::target`]).
 #[derive(Clone)]
-pub struct Origins(std::sync::Arc<Vec<String>>);
+pub struct Origins(std::sync::Arc<Known>);
+
+struct Known {
+    /// The lab's own origin, then those the address names.
+    allowed: Vec<String>,
+    /// The parent's origin as the browser tells it (`location.ancestorOrigins[0]`).
+    ancestor: Option<String>,
+    /// The origin of the first command from the parent window.
+    first_command: std::sync::OnceLock<String>,
+}
 
 impl Origins {
     /// The page's own origin and `extra`.
     pub fn new(extra: &[String]) -> Self {
-        let own = web_sys::window()
-            .and_then(|w| w.location().origin().ok())
+        let location = web_sys::window().map(|w| w.location());
+        let own = location
+            .as_ref()
+            .and_then(|l| l.origin().ok())
             .unwrap_or_default();
-        let mut list = vec![own];
-        list.extend(extra.iter().cloned());
-        Self(std::sync::Arc::new(list))
+        // `location.ancestorOrigins` (a DOMStringList; Firefox has none), read by name:
+        // web-sys does not bind it.
+        let ancestor = location
+            .and_then(|l| js_sys::Reflect::get(&l, &"ancestorOrigins".into()).ok())
+            .filter(|list| !list.is_undefined() && !list.is_null())
+            .and_then(|list| js_sys::Reflect::get(&list, &0.into()).ok())
+            .and_then(|first| first.as_string());
+        let mut allowed = vec![own];
+        allowed.extend(extra.iter().cloned());
+        Self(std::sync::Arc::new(Known {
+            allowed,
+            ancestor,
+            first_command: std::sync::OnceLock::new(),
+        }))
     }
 
     fn allows(&self, origin: &str) -> bool {
-        self.0.iter().any(|o| o == origin)
+        self.0.allowed.iter().any(|o| o == origin)
+    }
+
+    /// Where a message to the parent goes ([`super::target::ParentOrigin::targets`]).
+    fn parent_targets(&self) -> Vec<String> {
+        let known = &self.0;
+        super::target::ParentOrigin {
+            own: &known.allowed[0],
+            named: &known.allowed[1..],
+            first_command: known.first_command.get().map(String::as_str),
+            ancestor: known.ancestor.as_deref(),
+        }
+        .targets()
     }
 }
 
@@ -71,6 +106,13 @@ pub fn listen(inbox: Inbox, origins: Origins, ctx: egui::Context) {
             else {
                 return;
             };
+            // The parent's first command tells its origin: the lab's own messages go there.
+            if web_sys::window()
+                .and_then(|w| w.parent().ok().flatten())
+                .is_some_and(|parent| parent == source)
+            {
+                origins.0.first_command.get_or_init(|| origin.clone());
+            }
             let id = js_sys::Reflect::get(&data, &"id".into())
                 .ok()
                 .and_then(|id| js_sys::JSON::stringify(&id).ok())
@@ -111,9 +153,9 @@ pub fn send(reply_to: &ReplyTo, json: &str) {
     }
 }
 
-/// Tells the embedding page, if there is one, that the lab is ready for commands:
-/// `{bvhlab: "ready"}`, posted to each allowed origin (the browser delivers it only to a
-/// parent of that origin).
+/// Tells the embedding page, if there is one, a message of the lab's own (`{bvhlab:
+/// "ready"}`, progress, size, panic): posted to the parent's origin once known, else to each
+/// allowed origin (the browser delivers it only to a parent of that origin).
 pub fn announce(origins: &Origins, message: &str) {
     let Some(window) = web_sys::window() else {
         return;
@@ -127,9 +169,9 @@ pub fn announce(origins: &Origins, message: &str) {
     let Ok(message) = js_sys::JSON::parse(message) else {
         return;
     };
-    for origin in origins.0.iter() {
+    for origin in origins.parent_targets() {
         // A parent of another origin does not receive it; that is not an error.
-        parent.post_message(&message, origin).ok();
+        parent.post_message(&message, &origin).ok();
     }
 }
 

@@ -18,6 +18,7 @@
 pub mod browser;
 pub mod command;
 pub mod size;
+pub mod target;
 
 use std::collections::VecDeque;
 

@@ -128,7 +128,7 @@ fn query_shapes(
     }
     if lab.display.query_marks && !building(lab) {
         draw_marks(lab, this, lab.display.max_depth, wp);
-        overlay::draw_step(lab, this, lab.half.playback.at_end, wp);
+        overlay::draw_step(lab, this, lab.half.playback.at_end, wp, painter);
     }
     if let Some(node) = hovered {
         overlay::draw_hovered(lab, this, node, wp);
@@ -137,6 +137,20 @@ fn query_shapes(
         volumes::draw_volumes(lab, volume, wp);
     }
     draw_queries(lab, this, wp, painter);
+}
+
+/// Whether lane `index`'s canvas draws splitting planes: a k-d tree, quadtree or BSP tree
+/// is built and its nodes are drawn (for the legend).
+pub(super) fn draws_splits(lab: &Lab2d, index: usize) -> bool {
+    lab.display.structure
+        && !building(lab)
+        && built(lab, lab.half.lane_at(index)).is_some_and(|(s, outline)| {
+            !s.settings.kind.is_bvh()
+                && s.settings.kind != StructureKind::Grid
+                && outline
+                    .iter()
+                    .any(|n| !n.splits.is_empty() && n.depth < lab.display.max_depth)
+        })
 }
 
 /// The lane's structure built on the scene as it is, with its nodes.
@@ -153,7 +167,11 @@ fn draw_structure(lab: &Lab2d, lane: &Lane<Segment2>, max_depth: u32, wp: &mut W
         return;
     };
     let stroke = Stroke::new(1.0, colors::STRUCTURE);
-    let split_stroke = Stroke::new(1.0, colors::STRUCTURE.gamma_multiply(1.6));
+    let split_stroke = Stroke::new(1.5, colors::SPLIT);
+    // Dashes over the part of a plane in view only: zoomed in, a whole plane would be
+    // thousands of dashes off screen.
+    let (lo, hi) = wp.screen.visible_world();
+    let visible = Aabb2::new(lo, hi);
     if built.settings.kind == StructureKind::Grid {
         draw_grid_lines(outline, wp, stroke);
         return;
@@ -173,10 +191,15 @@ fn draw_structure(lab: &Lab2d, lane: &Lane<Segment2>, max_depth: u32, wp: &mut W
             continue;
         }
         let region = node.shape.aabb();
+        let (lo, hi) = (region.min.max(visible.min), region.max.min(visible.max));
+        if lo.cmpgt(hi).any() {
+            continue;
+        }
+        let shown = Aabb2::new(lo, hi);
         let clip = ancestor_half_planes(outline, node.id);
         for split in &node.splits {
-            if let Some((a, b)) = clipped_plane(split.normal, split.offset, &region, &clip) {
-                wp.line(a, b, split_stroke);
+            if let Some((a, b)) = clipped_plane(split.normal, split.offset, &shown, &clip) {
+                wp.dashed_line(a, b, split_stroke);
             }
         }
     }
@@ -308,7 +331,9 @@ fn draw_queries(
         if let Ok(ray) = handles.ray() {
             let end = visible_end(&ray, wp.screen);
             wp.line(ray.origin(), end, Stroke::new(2.0, colors::QUERY));
+            // All hits: each one the panel lists; otherwise the first hit.
             if live
+                && !overlay::draw_all_hits(lane, wp, fonts)
                 && let Some(hit) = lane
                     .ray_outcome
                     .as_ref()

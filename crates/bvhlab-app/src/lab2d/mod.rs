@@ -138,16 +138,18 @@ pub fn canvas(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
         lab,
         cx.ui.canvas.key_handle,
     );
-    let volumes: Vec<_> = volumes::shown_volumes(lab)
+    let splits = (0..halves.len()).any(|i| draw::draws_splits(lab, i));
+    let more: Vec<_> = splits
+        .then_some((crate::paint::colors::SPLIT, crate::paint::SPLIT_NAME))
         .into_iter()
-        .map(|k| {
+        .chain(volumes::shown_volumes(lab).into_iter().map(|k| {
             (
                 crate::paint::colors::volume(k),
                 crate::paint::colors::volume_name(k),
             )
-        })
+        }))
         .collect();
-    crate::paint::legend_with(&painter, response.rect, "tested segment", &volumes);
+    crate::paint::legend_with(&painter, response.rect, "tested segment", &more);
     if lab.half.compare.is_some() {
         let x = halves[0].right() + 2.0;
         painter.vline(

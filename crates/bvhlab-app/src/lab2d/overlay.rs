@@ -45,8 +45,41 @@ fn prim_stroke(
     }
 }
 
+/// A hit of the ray on primitive `prim` at `at`: a dot in the answer's colour, and the
+/// primitive's number beside it as the panel lists it ("#2"), so that each hit listed can be
+/// found on the canvas without telling colours apart.
+pub(super) fn hit_mark(wp: &mut WorldPainter<'_>, fonts: &egui::Painter, at: Vec2, prim: u32) {
+    wp.dot(at, 6.0, colors::ANSWER);
+    wp.text(fonts, at, &format!(" #{prim}"), colors::ANSWER);
+}
+
+/// Every hit of an all-hits question at the end of its recording (the panel lists them all),
+/// or nothing when the lane's question is another one; whether it drew them.
+pub(super) fn draw_all_hits(
+    lane: &Lane<Segment2>,
+    wp: &mut WorldPainter<'_>,
+    fonts: &egui::Painter,
+) -> bool {
+    let (Some(rec), Some(snap)) = (lane.recorded(), &lane.snapshot) else {
+        return false;
+    };
+    let (Task::AllHits, Some(ray)) = (rec.question.task, rec.question.ray) else {
+        return false;
+    };
+    for &(prim, t) in &snap.best {
+        hit_mark(wp, fonts, ray.at(t), prim);
+    }
+    true
+}
+
 /// The current node, the waiting nodes, and (while stepping) the best answer so far.
-pub(super) fn draw_step(lab: &Lab2d, lane: &Lane<Segment2>, live: bool, wp: &mut WorldPainter<'_>) {
+pub(super) fn draw_step(
+    lab: &Lab2d,
+    lane: &Lane<Segment2>,
+    live: bool,
+    wp: &mut WorldPainter<'_>,
+    fonts: &egui::Painter,
+) {
     let (Some((_, outline)), Some(snap), Some(rec)) =
         (built(lab, lane), &lane.snapshot, lane.recorded())
     else {
@@ -74,7 +107,7 @@ pub(super) fn draw_step(lab: &Lab2d, lane: &Lane<Segment2>, live: bool, wp: &mut
         match q.task {
             Task::FirstHit | Task::AnyHit | Task::AllHits => {
                 if let Some(ray) = q.ray {
-                    wp.dot(ray.at(value), 6.0, colors::ANSWER);
+                    hit_mark(wp, fonts, ray.at(value), prim);
                 }
             }
             Task::Nearest | Task::Range => {

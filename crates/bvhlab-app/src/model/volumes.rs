@@ -94,7 +94,8 @@ impl Default for VolumeToggles {
     fn default() -> Self {
         Self {
             centroid: true,
-            ritter: false,
+            // On: the lecture's three sphere fits are seen side by side.
+            ritter: true,
             welzl: true,
             aabb: true,
             obb: true,

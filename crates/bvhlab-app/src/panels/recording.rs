@@ -175,7 +175,7 @@ fn counters_table<V: Vector>(
                 });
             }
             ui.end_row();
-            let rows: [CounterRow; 3] = [
+            let mut rows: Vec<CounterRow> = vec![
                 (
                     kind.nodes_name(),
                     |c| c.nodes,
@@ -195,6 +195,16 @@ fn counters_table<V: Vector>(
                     brute.prim_tests,
                 ),
             ];
+            // A structure that lists a primitive in several cells remembers what it tested
+            // (mailboxing): the tests it skipped are counted too (brute force skips none).
+            if mailboxes(kind) && !build {
+                rows.push((
+                    "mailbox skips",
+                    |c| c.mailbox_skips,
+                    mailbox_skips(&rec.events),
+                    0,
+                ));
+            }
             // A range query reports only the volumes it refuses, not every test.
             let unreported = rec.question.task == Task::Range;
             for (name, get, t, b) in rows {
@@ -228,6 +238,30 @@ fn counters_table<V: Vector>(
         };
         ui.colored_label(color, text);
     }
+}
+
+/// Whether `kind` lists a primitive in several cells and so skips repeated tests.
+fn mailboxes(kind: StructureKind) -> bool {
+    matches!(
+        kind,
+        StructureKind::Grid | StructureKind::KdTree | StructureKind::Quadtree | StructureKind::Bsp
+    )
+}
+
+/// The primitive tests a recording skipped because the primitive was tested already.
+fn mailbox_skips<V: Vector>(events: &[bvhlab::Event<V>]) -> u64 {
+    events
+        .iter()
+        .filter(|e| {
+            matches!(
+                e,
+                bvhlab::Event::PrimitiveTest {
+                    result: bvhlab::structure::PrimitiveResult::AlreadyTested,
+                    ..
+                }
+            )
+        })
+        .count() as u64
 }
 
 fn frontier_view<V: Vector>(snap: &Snapshot<V>, ui: &mut egui::Ui) {
@@ -315,5 +349,14 @@ fn best_view<V: Vector>(task: Task, snap: &Snapshot<V>, ui: &mut egui::Ui) {
             _ => format!("#{p} at t = {v:.3}"),
         })
         .collect();
-    ui.colored_label(colors::ANSWER, format!("{what}: {}", items.join(", ")));
+    let more = snap.best.len().saturating_sub(items.len());
+    let tail = if more > 0 {
+        format!(" … and {more} more")
+    } else {
+        String::new()
+    };
+    ui.colored_label(
+        colors::ANSWER,
+        format!("{what}: {}{tail}", items.join(", ")),
+    );
 }

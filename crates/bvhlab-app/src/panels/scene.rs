@@ -29,15 +29,20 @@ impl Panel for Scene {
             cx.ui.canvas.interaction = crate::lab2d::Interaction::None;
             cx.act(Action2d::SetTool(tool));
         }
-        let mut preset = lab.preset;
+        // A preset chosen loads, even the one named already: after a lesson put another
+        // structure on its scene ("k-d tree on a handful of shapes" under an AABB tree),
+        // choosing it again must give what its name says.
+        let mut chosen = None;
         egui::ComboBox::from_label("Preset")
-            .selected_text(preset.label())
+            .selected_text(lab.preset.label())
             .show_ui(ui, |ui| {
                 for p in Preset::ALL {
-                    ui.selectable_value(&mut preset, p, p.label());
+                    if ui.selectable_label(p == lab.preset, p.label()).clicked() {
+                        chosen = Some(p);
+                    }
                 }
             });
-        if preset != lab.preset {
+        if let Some(preset) = chosen {
             cx.act(Action2d::LoadPreset(preset));
         }
         ui.horizontal(|ui| {

@@ -105,11 +105,40 @@ pub fn settings_editor(s: &mut BuildSettings, dim: usize, ui: &mut egui::Ui) {
     }
 }
 
+/// Brute force, which has no tree: no nodes to draw or colour, no depth, no leaves to count
+/// (the core's one "leaf" of every primitive is its list, not a node).
+fn brute_force_display(
+    cx: &mut Cx<'_>,
+    built: &crate::model::build_job::Structure<bvhlab::Segment2>,
+    ui: &mut egui::Ui,
+) {
+    let lab = cx.lab.two();
+    let mut d = lab.display;
+    ui.checkbox(&mut d.query_marks, "mark query steps");
+    if d != lab.display {
+        cx.act(Action2d::SetDisplay(d));
+    }
+    let stats = &built.stats;
+    ui.label(super::tree::brute_force_words(stats.primitives, "segments"));
+    Grid::new("stats").striped(true).show(ui, |ui| {
+        ui.label("memory");
+        ui.label(format!("{:.1} KiB", stats.memory_bytes as f64 / 1024.0));
+        ui.end_row();
+        ui.label("build time");
+        ui.label(format!("{:.2} ms", built.build_ms));
+        ui.end_row();
+    });
+}
+
 fn structure_display(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
     let lab = cx.lab.two();
     let Some(built) = lab.half.lane.current(lab.scene.revision()) else {
         return;
     };
+    if built.settings.kind == StructureKind::BruteForce {
+        brute_force_display(cx, built, ui);
+        return;
+    }
     let stats = &built.stats;
     let mut d = lab.display;
     ui.horizontal_wrapped(|ui| {
@@ -176,7 +205,13 @@ fn structure_display(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
             .iter()
             .enumerate()
             .filter(|(_, count)| **count > 0)
-            .map(|(size, count)| format!("{count} with {size}"))
+            .map(|(size, count)| {
+                if size == bvhlab::structure::Stats::LEAF_SIZE_LAST {
+                    format!("{count} with {size} or more")
+                } else {
+                    format!("{count} with {size}")
+                }
+            })
             .collect();
         crate::a11y::describe::figure(
             ui.ctx(),
@@ -201,6 +236,15 @@ fn structure_section(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
                 .show_percentage()
                 .text(format!("building the {}…", job.settings.kind.label_in(3))),
         );
+    } else if let Some(built) = lane
+        .structure
+        .as_ref()
+        .filter(|b| b.settings.kind == StructureKind::BruteForce)
+    {
+        ui.label(super::tree::brute_force_words(
+            built.stats.primitives,
+            "triangles",
+        ));
     } else if let Some(built) = &lane.structure {
         let s = &built.stats;
         ui.label(format!(

@@ -10,6 +10,7 @@ use bvhlab::{Aabb, Obb, Sphere};
 use crate::model::dimension::{Dimension, LabPrimitive, thousands};
 use crate::model::half::Half;
 use crate::model::lane::Lane;
+use crate::model::structures::StructureKind;
 use crate::tree_diagram::{TreeDiagram, TreeHighlight};
 use crate::ui_state::{Cx, UiState};
 
@@ -43,7 +44,8 @@ fn highlight<'a, P: LabPrimitive>(
 }
 
 /// The lane's nodes, when its structure is built on the half's primitives as they are and
-/// small enough to list; otherwise why there is no diagram.
+/// small enough to list; otherwise why there is no diagram (brute force has no tree, an empty
+/// scene builds none: each said as it is, not one sentence for both).
 fn outline<P: LabPrimitive>(
     lane: &Lane<P>,
     revision: u64,
@@ -55,6 +57,13 @@ fn outline<P: LabPrimitive>(
             .build_error
             .clone()
             .unwrap_or_else(|| "No structure yet.".to_owned())),
+        Some(s) if s.settings.kind == StructureKind::BruteForce => {
+            Err(brute_force_words(prims, P::NAME))
+        }
+        Some(_) if prims == 0 => Err(format!(
+            "No tree to show: the scene has no {} to build one over.",
+            P::NAME
+        )),
         Some(s) => s.outline.as_deref().ok_or_else(|| {
             format!(
                 "A tree over {} {} is too large to draw as a diagram (up to {}).",
@@ -64,6 +73,15 @@ fn outline<P: LabPrimitive>(
             )
         }),
     }
+}
+
+/// What the tree panel and the structure panel say of brute force over `prims` primitives
+/// (`name`: "segments", "triangles"): it has no tree, so neither a diagram nor leaves.
+pub fn brute_force_words(prims: usize, name: &str) -> String {
+    format!(
+        "Brute force has no tree: it keeps the {} {name} in one list and tests every one.",
+        thousands(prims)
+    )
 }
 
 /// The panel's content: one diagram per lane of the half shown.
@@ -170,6 +188,7 @@ where
                     }
                 }
                 Err(why) => {
+                    trees[i].forget();
                     column.label(why);
                 }
             }

@@ -289,13 +289,10 @@ fn sat_demo(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
             ui.strong("A projects to");
             ui.strong("B projects to");
             ui.strong("gap");
+            ui.strong("separates");
             ui.end_row();
             for test in &tests {
-                let name = match test.source {
-                    AxisSource::FaceA(i) => format!("A face {i}"),
-                    AxisSource::FaceB(j) => format!("B face {j}"),
-                    AxisSource::Edges(i, j) => format!("A{i} × B{j}"),
-                };
+                let name = axis_name(test.source);
                 let color = if test.separates() {
                     colors::VISITED
                 } else {
@@ -311,16 +308,28 @@ fn sat_demo(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
                     test.interval_b.0, test.interval_b.1
                 ));
                 ui.label(RichText::new(format!("{:.2}", test.gap)).color(color));
+                // Said in words too: the colour is not the only sign.
+                ui.label(RichText::new(if test.separates() { "yes" } else { "no" }).color(color));
                 ui.end_row();
             }
         });
-        match tests.iter().position(bvhlab::AxisTest::separates) {
-            Some(i) => ui.label(format!(
-                "Axis {} separates them: the boxes do not overlap (the test stops there).",
-                i + 1
+        match tests.iter().find(|t| t.separates()) {
+            Some(test) => ui.label(format!(
+                "{} separates them: the boxes do not overlap (the test stops there).",
+                axis_name(test.source)
             )),
             None => ui.label("No axis separates them: the boxes overlap."),
         };
+    }
+}
+
+/// A separating-axis candidate's name, the same in the table's rows and in the sentence
+/// under it: "A face 0" is the normal of the first box's face 0.
+fn axis_name(source: AxisSource) -> String {
+    match source {
+        AxisSource::FaceA(i) => format!("A face {i}"),
+        AxisSource::FaceB(j) => format!("B face {j}"),
+        AxisSource::Edges(i, j) => format!("A{i} × B{j}"),
     }
 }
 

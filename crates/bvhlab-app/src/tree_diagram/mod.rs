@@ -31,9 +31,9 @@ use camera::{Camera, Viewport};
 use draw::Painting;
 use layout::{Arrangement, Layout, LayoutKey};
 
-/// What the widget says instead of a diagram when the outline has no nodes.
-pub const EMPTY_MESSAGE: &str =
-    "No tree to show: brute force has no structure, and an empty scene builds no nodes.";
+/// What the widget says instead of a diagram when the outline has no nodes. (The tree
+/// panel says why before it gets here: brute force has no tree, an empty scene builds none.)
+pub const EMPTY_MESSAGE: &str = "No tree to show: the structure has no nodes.";
 
 /// Within this many points of a node's dot, the pointer is on it.
 const HOVER_SLOP: f32 = 4.0;
@@ -99,6 +99,13 @@ pub struct TreeDiagram {
 }
 
 impl TreeDiagram {
+    /// Forgets the diagram drawn last, when the panel shows words in its place (brute
+    /// force, an empty scene, a structure too large to list): nothing is hovered in it.
+    pub fn forget(&mut self) {
+        self.layout = None;
+        self.area = None;
+    }
+
     /// Shows the diagram in `ui`: a "Fit" button and a summary, then the diagram across the
     /// available width, [`height`](Self::height) points high (or the available height).
     /// Drag to pan, scroll or pinch to zoom, hover a node for its details.

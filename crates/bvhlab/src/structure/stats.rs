@@ -37,9 +37,13 @@ impl Stats {
         self.references.saturating_sub(self.primitives)
     }
 
-    /// A histogram with buckets `0..=LAST` from leaf sizes.
+    /// The last bucket of [`leaf_sizes`](Self::leaf_sizes): it counts the leaves of this
+    /// many primitives or more.
+    pub const LEAF_SIZE_LAST: usize = 32;
+
+    /// A histogram with buckets `0..=LEAF_SIZE_LAST` from leaf sizes.
     pub fn leaf_size_histogram(sizes: impl Iterator<Item = usize>) -> Vec<usize> {
-        const LAST: usize = 32;
+        const LAST: usize = Stats::LEAF_SIZE_LAST;
         let mut histogram = vec![0; LAST + 1];
         for size in sizes {
             histogram[size.min(LAST)] += 1;
