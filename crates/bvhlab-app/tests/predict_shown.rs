@@ -366,3 +366,79 @@ fn every_question_on_the_lessons_lights_and_shows_what_decides_it() {
     );
     assert!(asked > 100, "only {asked} questions asked");
 }
+
+/// Item 9: at step 0 with Predict on, a lesson's ray or point step draws the query (the ray's
+/// line or the point), the structure, and what the first question is about, if one waits.
+#[test]
+fn step_zero_with_predict_on_draws_the_query_the_structure_and_what_is_asked() {
+    let mut h = common::lab();
+    common::act(&mut h, PredictAction::On(true));
+    let mut failures = Vec::new();
+    let mut checked = 0;
+    for lesson in lessons::lessons() {
+        for index in 0..lesson.steps.len() {
+            if !open(&mut h, lesson, index) {
+                continue;
+            }
+            let context = format!("{} step {}", lesson.name, index + 1);
+            let lab = h.state().lab();
+            assert_eq!(lab.shown_step(), 0, "{context}: Predict starts at step 0");
+            let asks = lab.predict_question().is_some();
+            let (query, structure, lit) = match lab.dimension() {
+                Dimension::Two => {
+                    let painted = shapes(&h);
+                    let has = |c: egui::Color32| {
+                        painted.iter().any(|s| match s {
+                            Shape::LineSegment { stroke, .. } => stroke.color == c,
+                            Shape::Circle(ci) => ci.fill == c || ci.stroke.color == c,
+                            Shape::Rect(r) => r.stroke.color == c,
+                            Shape::Path(p) => p.stroke.color == ColorMode::Solid(c),
+                            Shape::Mesh(_) => c == colors::STRUCTURE,
+                            _ => false,
+                        })
+                    };
+                    (
+                        has(colors::QUERY),
+                        has(colors::STRUCTURE),
+                        painted.iter().any(asked_stroke),
+                    )
+                }
+                Dimension::Three => {
+                    let rect = Rect::from_min_size(Pos2::ZERO, egui::vec2(800.0, 600.0));
+                    let three = lab.three();
+                    let d = bvhlab_app::lab3d::draw::draw(
+                        three,
+                        0,
+                        rect,
+                        false,
+                        None,
+                        &lab.predict_about(),
+                    );
+                    let query = bvhlab_app::lab3d::draw::rgba(colors::QUERY, 1.0);
+                    let asked = bvhlab_app::lab3d::draw::rgba(colors::ASKED, 1.0);
+                    (
+                        d.overlay.iter().any(|s| s.color == query)
+                            || d.dots.iter().any(|s| s.color == query),
+                        !d.lines.is_empty(),
+                        d.overlay.iter().any(|s| s.color == asked),
+                    )
+                }
+            };
+            let brute = lab.exercise().contains("brute force");
+            if !query {
+                failures.push(format!("{context}: the ray or point is not drawn"));
+            }
+            if !structure && !brute {
+                failures.push(format!("{context}: the structure is not drawn"));
+            }
+            if asks && !lit {
+                failures.push(format!(
+                    "{context}: what the first question is about is not lit"
+                ));
+            }
+            checked += 1;
+        }
+    }
+    assert!(failures.is_empty(), "{failures:#?}");
+    assert!(checked >= 10, "only {checked} steps");
+}
