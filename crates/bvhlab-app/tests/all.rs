@@ -18,6 +18,7 @@ mod native;
 mod persist;
 mod playback;
 mod predict;
+mod predict_shown;
 mod pseudocode;
 mod readable;
 mod refit;

@@ -328,7 +328,7 @@ fn on_screen(camera: &OrbitCamera, p: Vec3) -> Pos2 {
 
 /// The SVG of the lab's 3D view, as the "View: SVG" button writes it.
 fn svg_of(lab: &Lab3d) -> String {
-    let shapes = picture(lab, AREA);
+    let shapes = picture(lab, &bvhlab_app::model::predict::About::default(), AREA);
     bvhlab_app::export::svg_document(&shapes, AREA, bvhlab_app::lab3d::BACKGROUND)
 }
 

@@ -13,6 +13,7 @@ use crate::model::build_job::Structure;
 use crate::model::lab2d::Lab2d;
 use crate::model::lane::Lane;
 use crate::model::outcome::NodeMark;
+use crate::model::predict::About;
 use crate::model::structures::StructureKind;
 use crate::model::tools::Tool;
 use crate::paint::{WorldPainter, clipped_plane, colors};
@@ -30,11 +31,14 @@ fn building(lab: &Lab2d) -> bool {
 }
 
 /// Draws lane `index` (0: the main structure, 1: the comparison) through `screen`, with the
-/// node `hovered` (here or in the tree diagram) lit.
+/// node `hovered` (here or in the tree diagram) lit, and in the main lane what Predict's
+/// question is `asked` about.
+#[allow(clippy::too_many_arguments)] // the lab, the view's state and what this frame lights
 pub(super) fn draw(
     lab: &Lab2d,
     canvas: &mut CanvasState,
     hovered: Option<(usize, NodeId)>,
+    asked: &About,
     index: usize,
     screen: Screen,
     painter: &egui::Painter,
@@ -73,7 +77,7 @@ pub(super) fn draw(
     let mut wp = WorldPainter::new(&screen);
     let hovered = hovered.filter(|(at, _)| *at == index).map(|(_, node)| node);
     let volume = canvas.volume_hover;
-    query_shapes(lab, index, hovered, volume, &mut wp, painter);
+    query_shapes(lab, index, hovered, volume, asked, &mut wp, painter);
     if lab.tool == Tool::Obb
         && let Some(pair) = &lab.obb_pair
     {
@@ -88,16 +92,17 @@ pub(super) fn draw(
 }
 
 /// The shapes of lane `index` that make a picture for export (SVG): the whole canvas,
-/// untessellated.
+/// untessellated, with what Predict's question is `asked` about.
 pub fn picture(
     lab: &Lab2d,
     index: usize,
+    asked: &About,
     screen: Screen,
     painter: &egui::Painter,
 ) -> Vec<egui::Shape> {
     let mut wp = WorldPainter::new(&screen);
     static_shapes(lab, index, &mut wp);
-    query_shapes(lab, index, None, None, &mut wp, painter);
+    query_shapes(lab, index, None, None, asked, &mut wp, painter);
     wp.shapes
 }
 
@@ -112,13 +117,15 @@ fn static_shapes(lab: &Lab2d, index: usize, wp: &mut WorldPainter<'_>) {
 }
 
 /// What changes with the query and the playback step: a build's progress or the query's
-/// marks and step, the `hovered` node, the bounding volumes (the `volume` hovered in their
+/// marks and step, what Predict's question is `asked` about (in the main lane, which
+/// Predict follows), the `hovered` node, the bounding volumes (the `volume` hovered in their
 /// table lit), the ray and the point.
 fn query_shapes(
     lab: &Lab2d,
     index: usize,
     hovered: Option<NodeId>,
     volume: Option<FitKind>,
+    asked: &About,
     wp: &mut WorldPainter<'_>,
     painter: &egui::Painter,
 ) {
@@ -129,6 +136,9 @@ fn query_shapes(
     if lab.display.query_marks && !building(lab) {
         draw_marks(lab, this, lab.display.max_depth, wp);
         overlay::draw_step(lab, this, lab.half.playback.at_end, wp, painter);
+    }
+    if index == 0 {
+        overlay::draw_asked(lab, this, asked, wp, painter);
     }
     if let Some(node) = hovered {
         overlay::draw_hovered(lab, this, node, wp);

@@ -103,6 +103,8 @@ pub fn canvas(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
         let node = overlay::node_at(outline, screen.to_world(p), lab.display.max_depth);
         cx.ui.hovered = node.map(|n| (i, n));
     }
+    // What Predict's question waiting is about, lit in the main lane.
+    let asked = cx.lab.predict_about();
     for (i, rect) in halves.iter().enumerate() {
         let screen = Screen {
             camera: lab.camera,
@@ -114,6 +116,7 @@ pub fn canvas(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
             lab,
             &mut cx.ui.canvas,
             cx.ui.hovered,
+            &asked,
             i,
             screen,
             &clipped,
@@ -139,7 +142,7 @@ pub fn canvas(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
         cx.ui.canvas.key_handle,
     );
     let splits = (0..halves.len()).any(|i| draw::draws_splits(lab, i));
-    let more: Vec<_> = splits
+    let mut more: Vec<_> = splits
         .then_some((crate::paint::colors::SPLIT, crate::paint::SPLIT_NAME))
         .into_iter()
         .chain(volumes::shown_volumes(lab).into_iter().map(|k| {
@@ -149,6 +152,9 @@ pub fn canvas(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
             )
         }))
         .collect();
+    if !asked.is_empty() {
+        more.push((crate::paint::colors::ASKED, "asked about"));
+    }
     crate::paint::legend_with(&painter, response.rect, "tested segment", &more);
     if lab.half.compare.is_some() {
         let x = halves[0].right() + 2.0;
@@ -172,8 +178,14 @@ pub fn halves(rect: egui::Rect, split: bool) -> Vec<egui::Rect> {
     ]
 }
 
-/// The shapes of the whole canvas (both halves when comparing), for SVG export.
-pub fn picture(lab: &Lab2d, rect: egui::Rect, painter: &egui::Painter) -> Vec<egui::Shape> {
+/// The shapes of the whole canvas (both halves when comparing), for SVG export, with what
+/// Predict's question is `asked` about.
+pub fn picture(
+    lab: &Lab2d,
+    asked: &crate::model::predict::About,
+    rect: egui::Rect,
+    painter: &egui::Painter,
+) -> Vec<egui::Shape> {
     halves(rect, lab.half.compare.is_some())
         .into_iter()
         .enumerate()
@@ -182,7 +194,7 @@ pub fn picture(lab: &Lab2d, rect: egui::Rect, painter: &egui::Painter) -> Vec<eg
                 camera: lab.camera,
                 rect,
             };
-            egui::Shape::Vec(draw::picture(lab, i, screen, painter))
+            egui::Shape::Vec(draw::picture(lab, i, asked, screen, painter))
         })
         .collect()
 }

@@ -9,6 +9,8 @@ use egui::Stroke;
 use super::draw::built;
 use crate::model::lab2d::Lab2d;
 use crate::model::lane::Lane;
+use crate::model::predict::About;
+use crate::model::structures::StructureKind;
 use crate::paint::{WorldPainter, clipped_plane, colors};
 use crate::pseudocode::Task;
 
@@ -125,6 +127,53 @@ pub(super) fn draw_step(
         let r = wp.screen.screen_length(d);
         wp.ring(p, r, Stroke::new(1.0, colors::ANSWER.gamma_multiply(0.6)));
     }
+}
+
+/// What Predict's question waiting is about: its nodes (or cells) and primitives lit in the
+/// asked colour, each labelled with its number and a question mark.
+pub(super) fn draw_asked(
+    lab: &Lab2d,
+    lane: &Lane<Segment2>,
+    about: &About,
+    wp: &mut WorldPainter<'_>,
+    fonts: &egui::Painter,
+) {
+    if let Some((built, outline)) = built(lab, lane) {
+        let unit = if built.settings.kind == StructureKind::Grid {
+            "cell"
+        } else {
+            "node"
+        };
+        for id in &about.nodes {
+            let Some(node) = outline.get(id.index()) else {
+                continue;
+            };
+            wp.node_fill(&node.shape, colors::ASKED.gamma_multiply(0.10));
+            wp.node_shape(&node.shape, Stroke::new(2.5, colors::ASKED));
+            let b = node.shape.aabb();
+            let corner = Vec2::new(b.min.x, b.max.y);
+            asked_label(wp, fonts, corner, format!("{unit} {}?", id.0));
+        }
+    }
+    for &prim in &about.prims {
+        prim_stroke(lab, prim, 4.0, colors::ASKED, wp);
+        if let Some(s) = lab.prims().segments.get(prim as usize) {
+            let middle = (s.a + s.b) * 0.5;
+            asked_label(wp, fonts, middle, format!(" primitive {prim}?"));
+        }
+    }
+}
+
+/// A label of what is asked about, just above `at`, kept inside the view so that it can be
+/// read whole (a root's corner or a primitive at the scene's edge can sit on the view's).
+fn asked_label(wp: &mut WorldPainter<'_>, fonts: &egui::Painter, at: Vec2, text: String) {
+    let galley = fonts.layout_no_wrap(text, egui::FontId::proportional(13.0), colors::ASKED);
+    let size = galley.size();
+    let view = wp.screen.rect.shrink(2.0);
+    let p = wp.screen.to_screen(at);
+    let x = p.x.min(view.right() - size.x).max(view.left());
+    let y = (p.y - size.y).min(view.bottom() - size.y).max(view.top());
+    wp.add(egui::Shape::galley(egui::pos2(x, y), galley, colors::ASKED));
 }
 
 /// A build in progress: the nodes made so far, the current one, its split and which side

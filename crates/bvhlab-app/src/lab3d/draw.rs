@@ -15,6 +15,7 @@ use crate::model::build_job::Structure;
 use crate::model::lab3d::Lab3d;
 use crate::model::lane::Lane;
 use crate::model::outcome::NodeMark;
+use crate::model::predict::About;
 use crate::model::snapshot::Snapshot;
 use crate::paint::colors;
 use crate::pseudocode::Task;
@@ -87,13 +88,15 @@ impl Draw3d {
 const HOVER_TRIANGLE_CAP: usize = 200_000;
 
 /// The draw list of lane `index` (1: the comparison) in a view of `rect`, with node
-/// `hovered` of this lane (in the tree diagram or on the mesh) lit.
+/// `hovered` of this lane (in the tree diagram or on the mesh) lit, and in the main lane
+/// what Predict's question is `asked` about.
 pub fn draw(
     lab: &Lab3d,
     index: usize,
     rect: egui::Rect,
     gizmo_shown: bool,
     hovered: Option<NodeId>,
+    asked: &About,
 ) -> Draw3d {
     let mut d = Draw3d::default();
     let task = lab.half.task;
@@ -117,6 +120,9 @@ pub fn draw(
     }
     if !building {
         query_shapes(lab, lane, task, size, &mut d);
+    }
+    if index == 0 {
+        asked_about(built, asked, &mut d);
     }
     if let Some(node) = hovered {
         hovered_node(built, node, &mut d);
@@ -243,6 +249,19 @@ fn build_state(lab: &Lab3d, built: &Built3d, snap: &Snapshot<Vec3>, d: &mut Draw
             stack.extend(children);
         }
     }
+}
+
+/// What Predict's question waiting is about: its nodes on top of the mesh (as the node
+/// hovered is), its triangles in the asked colour. The tree diagram and the question name
+/// them.
+fn asked_about(built: &Built3d, about: &About, d: &mut Draw3d) {
+    let color = rgba(colors::ASKED, 1.0);
+    for &node in &about.nodes {
+        if let Some(view) = built.node(node) {
+            wire::shape(&view.shape, color, 2.5, &mut d.overlay);
+        }
+    }
+    d.highlights.extend(about.prims.iter().map(|&p| (p, color)));
 }
 
 /// The node hovered: its volume or cell on top of the mesh (so it shows inside an opaque

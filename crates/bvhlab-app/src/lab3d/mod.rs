@@ -112,13 +112,15 @@ pub fn view(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
     let mesh = cx.ui.view3d.mesh_gpu(lab);
     let painter = ui.painter_at(rect);
     let mut drawn_lists = Vec::with_capacity(halves.len());
+    // What Predict's question waiting is about, lit in the main lane.
+    let asked = cx.lab.predict_about();
     for (i, half) in halves.iter().enumerate() {
         let hovered = cx
             .ui
             .hovered
             .filter(|(lane, _)| *lane == i)
             .map(|(_, node)| node);
-        let drawn = draw::draw(lab, i, *half, i == 0, hovered);
+        let drawn = draw::draw(lab, i, *half, i == 0, hovered, &asked);
         if cx.ui.render_state.is_some() {
             let id = ui.make_persistent_id(("3d view", i));
             gpu::paint_3d(ui, *half, id, frame(lab, mesh.clone(), &drawn));

@@ -31,8 +31,9 @@ pub fn mesh_left_out(lab: &Lab3d) -> Option<String> {
     })
 }
 
-/// The picture of the whole view (both halves when comparing) in `rect`.
-pub fn picture(lab: &Lab3d, rect: Rect) -> Vec<Shape> {
+/// The picture of the whole view (both halves when comparing) in `rect`, with what
+/// Predict's question is `asked` about.
+pub fn picture(lab: &Lab3d, asked: &crate::model::predict::About, rect: Rect) -> Vec<Shape> {
     let halves = crate::lab2d::halves(rect, lab.half.compare.is_some());
     let mut shapes = Vec::new();
     for (i, half) in halves.iter().enumerate() {
@@ -40,7 +41,7 @@ pub fn picture(lab: &Lab3d, rect: Rect) -> Vec<Shape> {
         let projector = Projector::new(&lab.camera, *half);
         mesh(lab, &projector, &mut shapes);
         overlay(
-            &draw::draw(lab, i, *half, i == 0, None),
+            &draw::draw(lab, i, *half, i == 0, None, asked),
             &projector,
             &mut shapes,
         );

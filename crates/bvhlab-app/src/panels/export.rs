@@ -40,9 +40,9 @@ pub fn export_buttons(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
             .clicked()
         {
             let shapes = if three {
-                crate::lab3d::picture::picture(lab.three(), view_rect)
+                crate::lab3d::picture::picture(lab.three(), &lab.predict_about(), view_rect)
             } else {
-                crate::lab2d::picture(lab.two(), view_rect, ui.painter())
+                crate::lab2d::picture(lab.two(), &lab.predict_about(), view_rect, ui.painter())
             };
             let svg = crate::export::svg_document(&shapes, view_rect, BACKGROUND);
             let saved =

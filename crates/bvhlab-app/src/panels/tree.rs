@@ -20,13 +20,15 @@ pub const MIN_PANEL_HEIGHT: f32 = crate::tree_diagram::MIN_HEIGHT + 60.0;
 /// The panel's height when the lab opens.
 pub const DEFAULT_PANEL_HEIGHT: f32 = 230.0;
 
-/// What lane `index`'s diagram highlights this frame.
+/// What lane `index`'s diagram highlights this frame (`asked`: what Predict's question is
+/// about, lit in the main lane's diagram, which Predict follows).
 fn highlight<'a, P: LabPrimitive>(
     half: &'a Half<P>,
     lane: &'a Lane<P>,
     ui: &UiState,
     index: usize,
     max_depth: u32,
+    asked: &'a [bvhlab::NodeId],
 ) -> TreeHighlight<'a> {
     let snap = lane.snapshot.as_ref();
     let live = half.playback.at_end;
@@ -40,6 +42,7 @@ fn highlight<'a, P: LabPrimitive>(
             .map(|(_, node)| node),
         existing: snap.filter(|_| building).map(|s| s.existing.as_slice()),
         max_depth,
+        asked: if index == 0 { asked } else { &[] },
     }
 }
 
@@ -93,6 +96,7 @@ pub fn tree_panel(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
     // strip, and the diagram, which fills the height it is given, kept it one.)
     ui.set_min_height(ui.available_height());
     cx.ui.tree_rect = Some(ui.max_rect());
+    let asked = lab.predict_about().nodes;
     let (hovered, clicked) = match lab.dimension() {
         Dimension::Two => {
             let two = lab.two();
@@ -104,6 +108,7 @@ pub fn tree_panel(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
                 revision,
                 prims,
                 two.display.max_depth,
+                &asked,
                 cx.ui,
                 &mut trees,
                 ui,
@@ -120,6 +125,7 @@ pub fn tree_panel(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
                 three.revision(),
                 prims,
                 u32::MAX,
+                &asked,
                 cx.ui,
                 &mut trees,
                 ui,
@@ -162,6 +168,7 @@ fn diagrams<P: LabPrimitive>(
     revision: u64,
     prims: usize,
     max_depth: u32,
+    asked: &[bvhlab::NodeId],
     state: &UiState,
     trees: &mut [TreeDiagram; 2],
     ui: &mut egui::Ui,
@@ -178,7 +185,7 @@ where
             let lane = half.lane_at(i);
             match outline(lane, revision, prims) {
                 Ok(nodes) => {
-                    let shown = highlight(half, lane, state, i, max_depth);
+                    let shown = highlight(half, lane, state, i, max_depth, asked);
                     let response = trees[i].show(column, nodes, &shown);
                     if let Some(node) = response.hovered {
                         hovered = Some((i, node));
@@ -200,6 +207,7 @@ where
 /// The diagrams fitted into `rect` (side by side when comparing), for export.
 pub fn tree_picture(cx: &mut Cx<'_>, ctx: &egui::Context, rect: egui::Rect) -> Vec<egui::Shape> {
     let lab = cx.lab;
+    let asked = lab.predict_about().nodes;
     match lab.dimension() {
         Dimension::Two => {
             let two = lab.two();
@@ -209,6 +217,7 @@ pub fn tree_picture(cx: &mut Cx<'_>, ctx: &egui::Context, rect: egui::Rect) -> V
                 two.scene.revision(),
                 two.prims().segments.len(),
                 two.display.max_depth,
+                &asked,
                 cx.ui,
                 &mut trees,
                 ctx,
@@ -225,6 +234,7 @@ pub fn tree_picture(cx: &mut Cx<'_>, ctx: &egui::Context, rect: egui::Rect) -> V
                 three.revision(),
                 three.triangles().len(),
                 u32::MAX,
+                &asked,
                 cx.ui,
                 &mut trees,
                 ctx,
@@ -242,6 +252,7 @@ fn pictures<P: LabPrimitive>(
     revision: u64,
     prims: usize,
     max_depth: u32,
+    asked: &[bvhlab::NodeId],
     state: &UiState,
     trees: &mut [TreeDiagram; 2],
     ctx: &egui::Context,
@@ -259,7 +270,7 @@ fn pictures<P: LabPrimitive>(
             rect.min + egui::vec2(width * i as f32, 0.0),
             egui::vec2(width, rect.height()),
         );
-        let shown = highlight(half, lane, state, i, max_depth);
+        let shown = highlight(half, lane, state, i, max_depth, asked);
         shapes.extend(tree.export_shapes(nodes, &shown, part, ctx));
     }
     shapes

@@ -55,6 +55,9 @@ pub(super) fn tree<V: Vector>(
         if highlight.current == Some(NodeId(index as u32)) {
             text.push_str("; the step shown is here");
         }
+        if highlight.asked.contains(&NodeId(index as u32)) {
+            text.push_str("; Predict's question is about it");
+        }
         let item = ui.new_child(
             egui::UiBuilder::new()
                 .id_salt(("tree item", index))
@@ -99,6 +102,7 @@ fn listed<V: Vector>(
         .filter(|&index| {
             layout.depth(index) <= deepest
                 || highlight.current == Some(NodeId(index as u32))
+                || highlight.asked.contains(&NodeId(index as u32))
                 || highlight
                     .marks
                     .and_then(|m| m.nodes.get(index).copied().flatten())

@@ -1,6 +1,7 @@
 //! Painting the diagram: edges, nodes coloured by what the query did to them, leaf
 //! primitive counts when there is room, and rings for the playback's current node, the node
-//! hovered on the canvas and the node under the pointer.
+//! hovered on the canvas, the node under the pointer and the nodes Predict's question is
+//! about (each with a question mark).
 //!
 //! Only rows and nodes on screen are visited (binary search in the layout's rows), and
 //! where many nodes fall on one point column (a 10,000-leaf tree fitted into a few hundred
@@ -61,6 +62,7 @@ impl<V: Vector> Painting<'_, V> {
         self.edges(out, rows_with_edges);
         self.nodes(out, rows, text);
         self.rings(out);
+        self.asked(out, text);
     }
 
     /// Whether the node is drawn faint: deeper than the depth limit, or not built yet.
@@ -261,6 +263,33 @@ impl<V: Vector> Painting<'_, V> {
             } else {
                 out.push(Shape::circle_stroke(at, r, stroke));
             }
+        }
+    }
+
+    /// A ring around each node Predict's question waiting is about, with a question mark
+    /// beside it (the words say it without the colour).
+    fn asked(&self, out: &mut Vec<Shape>, text: &mut LayoutText<'_>) {
+        let radius = self.camera.node_radius();
+        let stroke = Stroke::new(2.5, colors::ASKED);
+        for node in self.highlight.asked {
+            let id = node.index();
+            let Some(&pos) = self.layout.pos.get(id) else {
+                continue;
+            };
+            let at = self.camera.to_screen(pos);
+            let r = radius + 4.5;
+            if !self.clip.expand(r + LABEL_SIZE).contains(at) {
+                continue;
+            }
+            if self.outline[id].is_leaf() {
+                let square = Rect::from_center_size(at, vec2(2.0 * r, 2.0 * r));
+                out.push(Shape::rect_stroke(square, 0.0, stroke, StrokeKind::Middle));
+            } else {
+                out.push(Shape::circle_stroke(at, r, stroke));
+            }
+            let galley = text("?".to_owned(), LABEL_SIZE + 2.0, colors::ASKED);
+            let corner = at + vec2(r + 1.0, -r - galley.size().y * 0.5);
+            out.push(Shape::galley(corner, galley, colors::ASKED));
         }
     }
 }

@@ -56,6 +56,9 @@ pub struct TreeHighlight<'a> {
     pub existing: Option<&'a [bool]>,
     /// Nodes deeper than this are drawn faint.
     pub max_depth: u32,
+    /// What Predict's question waiting is about: a ring in
+    /// [`colors::ASKED`](crate::paint::colors::ASKED) and a question mark beside each.
+    pub asked: &'a [NodeId],
 }
 
 impl Default for TreeHighlight<'_> {
@@ -66,6 +69,7 @@ impl Default for TreeHighlight<'_> {
             linked: None,
             existing: None,
             max_depth: u32::MAX,
+            asked: &[],
         }
     }
 }

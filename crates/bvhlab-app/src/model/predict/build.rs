@@ -4,7 +4,7 @@
 use bvhlab::structure::NodeId;
 use bvhlab::{Event, Vector};
 
-use super::question::{AXES, At, Choice, PredictQuestion};
+use super::question::{AXES, About, At, Choice, PredictQuestion};
 use crate::model::structures::StructureKind;
 
 /// Whether a node just made becomes a leaf or how it is split.
@@ -96,5 +96,6 @@ pub(super) fn build_step<V: Vector>(at: &At<'_, V>, node: NodeId) -> Option<Pred
         reveal,
         why,
         hint: "A node with no more primitives than the leaf size becomes a leaf; otherwise the median builder splits the longest side of its centroids' box, and the SAH builder the cheapest plane.".to_owned(),
+        about: About::nodes([node]),
     })
 }

@@ -2,7 +2,7 @@
 
 use bvhlab::Vector;
 
-use super::question::{AXES, At, Choice, PredictQuestion};
+use super::question::{AXES, About, At, Choice, PredictQuestion};
 
 /// Which cell a grid's ray walk enters next: a neighbour across one face.
 pub(super) fn next_cell<V: Vector>(at: &At<'_, V>, coords: [u32; 3]) -> Option<PredictQuestion> {
@@ -46,6 +46,7 @@ pub(super) fn next_cell<V: Vector>(at: &At<'_, V>, coords: [u32; 3]) -> Option<P
             coords_text(coords, V::DIM)
         ),
         hint: "The ray leaves a cell through the side it reaches first: compare the t of the next vertical and the next horizontal grid line.".to_owned(),
+        about: About::nodes([last.cell]),
     })
 }
 

@@ -4,7 +4,7 @@
 use bvhlab::structure::PrimitiveResult;
 use bvhlab::{Event, Vector};
 
-use super::question::{At, Choice, PredictQuestion, yes_no};
+use super::question::{About, At, Choice, PredictQuestion, shown_apart, yes_no};
 
 /// Whether the ray hits a primitive; whether a primitive becomes one of the nearest; whether
 /// it lies in the range.
@@ -33,6 +33,10 @@ pub(super) fn primitive<V: Vector>(
         PrimitiveResult::Distance(d) => {
             let k = at.recording.question.k.max(1);
             let best = at.kth_best()?;
+            // Both distances are shown, and must differ as shown.
+            if !shown_apart(d, best) {
+                return None;
+            }
             let (answer, why) = if new_best {
                 (
                     Choice::Yes,
@@ -55,12 +59,13 @@ pub(super) fn primitive<V: Vector>(
             };
             return Some(PredictQuestion {
                 step,
-                prompt: format!("The best distance so far is {best:.3}. Does primitive {prim} become {which}?"),
+                prompt: format!("The best distance so far is {best:.3}; primitive {prim} is {d:.3} from the point. Does it become {which}?"),
                 choices: yes_no(),
                 answer,
                 reveal,
                 why,
-                hint: "Compare the primitive's distance from the point (to its nearest point) with the best so far.".to_owned(),
+                hint: "A primitive joins the best so far only when it is nearer than the best so far (the k-th best, for k nearest).".to_owned(),
+                about: About::prim(prim),
             });
         }
         PrimitiveResult::Overlap => (
@@ -85,5 +90,6 @@ pub(super) fn primitive<V: Vector>(
         reveal,
         why,
         hint: hint.to_owned(),
+        about: About::prim(prim),
     })
 }

@@ -21,7 +21,7 @@ mod walk;
 use bvhlab::structure::bvh::NodeVolume;
 use bvhlab::{Aabb, Obb, Sphere};
 
-pub use self::question::{Choice, PredictQuestion, question_at};
+pub use self::question::{About, Choice, DISTINCT_ALONG_RAY, PredictQuestion, question_at};
 use super::dimension::{Dimension, LabPrimitive};
 use super::half::Half;
 use super::question::{Task, Variant};
@@ -193,6 +193,12 @@ impl Lab {
             Dimension::Two => question_of(&self.two.half),
             Dimension::Three => question_of(&self.three.half),
         }
+    }
+
+    /// What the question waiting is about (nothing when none waits): the views light it in
+    /// the main structure's lane while it is asked.
+    pub fn predict_about(&self) -> About {
+        self.predict_question().map(|q| q.about).unwrap_or_default()
     }
 
     /// The exercise of the half shown.

@@ -55,6 +55,39 @@ pub enum Choice {
     Split,
 }
 
+/// What decides a question, lit in the views while it is asked (the canvas or 3D view and
+/// the tree diagram): a question is asked only when the picture shows what decides it.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct About {
+    /// The nodes (or cells) it names or chooses among.
+    pub nodes: Vec<NodeId>,
+    /// The primitives it names.
+    pub prims: Vec<u32>,
+}
+
+impl About {
+    /// About these nodes.
+    pub fn nodes(nodes: impl IntoIterator<Item = NodeId>) -> Self {
+        Self {
+            nodes: nodes.into_iter().collect(),
+            prims: Vec::new(),
+        }
+    }
+
+    /// About this primitive.
+    pub fn prim(prim: u32) -> Self {
+        Self {
+            nodes: Vec::new(),
+            prims: vec![prim],
+        }
+    }
+
+    /// Whether it names nothing.
+    pub fn is_empty(&self) -> bool {
+        self.nodes.is_empty() && self.prims.is_empty()
+    }
+}
+
 /// What is asked before a step.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PredictQuestion {
@@ -72,6 +105,8 @@ pub struct PredictQuestion {
     pub why: String,
     /// A hint after a wrong answer: where to look, not the answer.
     pub hint: String,
+    /// What decides it, lit in the views while it is asked.
+    pub about: About,
 }
 
 impl PredictQuestion {
@@ -117,7 +152,8 @@ impl<V: Vector> At<'_, V> {
         self.snapshot.best.get(k - 1).map(|b| b.1)
     }
 
-    /// A question at this step.
+    /// A question at this step about what `about` names.
+    #[allow(clippy::too_many_arguments)] // a question's parts, each named by its field
     pub fn ask(
         &self,
         prompt: String,
@@ -126,6 +162,7 @@ impl<V: Vector> At<'_, V> {
         reveal: usize,
         why: String,
         hint: &str,
+        about: About,
     ) -> PredictQuestion {
         PredictQuestion {
             step: self.step(),
@@ -135,9 +172,21 @@ impl<V: Vector> At<'_, V> {
             reveal,
             why,
             hint: hint.to_owned(),
+            about,
         }
     }
 }
+
+/// Two numbers as the questions show them (three decimals): a comparison is asked only when
+/// they differ as shown, so that the numbers on screen decide it.
+pub(super) fn shown_apart(a: f32, b: f32) -> bool {
+    format!("{a:.3}") != format!("{b:.3}")
+}
+
+/// How far apart, as a share of the distance along the ray, two points of a ray must be for
+/// the picture to tell which comes first (about 4 points in 400): nearer than this, a
+/// question that hangs on their order and cannot show both numbers is not asked.
+pub const DISTINCT_ALONG_RAY: f32 = 0.01;
 
 /// The names of the axes.
 pub(super) const AXES: [&str; 3] = ["x", "y", "z"];

@@ -5,7 +5,10 @@
 use bvhlab::structure::{NodeId, PruneAt, PruneReason};
 use bvhlab::{Event, Vector};
 
-use super::question::{At, Choice, PredictQuestion, by_node, volume_word, yes_no};
+use super::question::{
+    About, At, Choice, DISTINCT_ALONG_RAY, PredictQuestion, by_node, shown_apart, volume_word,
+    yes_no,
+};
 use crate::model::question::{Task, Variant};
 use crate::model::snapshot::Frontier;
 use crate::model::structures::StructureKind;
@@ -27,10 +30,28 @@ pub(super) fn next_node<V: Vector>(at: &At<'_, V>, node: NodeId) -> Option<Predi
     } else {
         "node"
     };
+    // A queue's order is its keys: each answer shows its key, and the smallest must differ
+    // from the others as shown.
+    let queue = frontier == Frontier::Queue;
+    let key_name = key_name(at);
+    if queue
+        && snapshot.frontier[1..]
+            .iter()
+            .any(|p| !shown_apart(p.key, first.key))
+    {
+        return None;
+    }
     let choices = snapshot
         .frontier
         .iter()
-        .map(|p| (Choice::Node(p.node.0), format!("{unit} {}", p.node.0)))
+        .map(|p| {
+            let label = if queue {
+                format!("{unit} {} ({key_name} {:.3})", p.node.0, p.key)
+            } else {
+                format!("{unit} {}", p.node.0)
+            };
+            (Choice::Node(p.node.0), label)
+        })
         .collect();
     let (why, hint) = match frontier {
         Frontier::Queue => (
@@ -58,7 +79,17 @@ pub(super) fn next_node<V: Vector>(at: &At<'_, V>, node: NodeId) -> Option<Predi
         1,
         why,
         hint,
+        About::nodes(snapshot.frontier.iter().map(|p| p.node)),
     ))
+}
+
+/// What a walk's keys are: the distance from the point, or where the ray enters.
+fn key_name<V: Vector>(at: &At<'_, V>) -> &'static str {
+    if matches!(at.recording.question.task, Task::Nearest | Task::Range) {
+        "distance"
+    } else {
+        "entry t"
+    }
 }
 
 /// Whether the ray meets `node`'s volume; in the full first-hit walk, once a hit is known,
@@ -72,8 +103,18 @@ pub(super) fn ray_bound<V: Vector>(
     let question = &at.recording.question;
     let best = at.snapshot.best.first().map(|b| b.1);
     let prunes = at.prune_follows(node);
+    // Kept or pruned against the best hit hangs on where the ray enters the volume, which
+    // cannot be shown as a number without saying that the ray meets it: asked only when the
+    // entry and the best hit (drawn on the ray) are clearly apart; else only "does it meet".
+    let apart = |best_t: f32| {
+        interval.is_none_or(|(a, _)| (a - best_t).abs() >= DISTINCT_ALONG_RAY * best_t.abs())
+    };
     match best {
-        Some(best_t) if question.task == Task::FirstHit && question.variant == Variant::Full => {
+        Some(best_t)
+            if question.task == Task::FirstHit
+                && question.variant == Variant::Full
+                && apart(best_t) =>
+        {
             let beyond = matches!(
                 at.next(),
                 Some(Event::Prune {
@@ -119,6 +160,7 @@ pub(super) fn ray_bound<V: Vector>(
                 1 + usize::from(prunes),
                 why,
                 "Find where the ray enters the volume, and compare that t with the best hit so far.",
+                About::nodes([node]),
             )
         }
         _ => {
@@ -139,6 +181,7 @@ pub(super) fn ray_bound<V: Vector>(
                 1 + usize::from(interval.is_none() && prunes),
                 why,
                 slab_hint(at.kind),
+                About::nodes([node]),
             )
         }
     }
@@ -152,6 +195,9 @@ pub(super) fn distance_bound<V: Vector>(
     distance: f32,
 ) -> Option<PredictQuestion> {
     let best = at.kth_best()?;
+    if !shown_apart(distance, best) {
+        return None;
+    }
     let volume = volume_word(at.kind);
     let pruned = at.prune_follows(node);
     let (answer, why) = if pruned {
@@ -173,7 +219,7 @@ pub(super) fn distance_bound<V: Vector>(
     };
     Some(at.ask(
         format!(
-            "The best distance so far is {best:.3}. Is node {} kept or pruned?",
+            "The best distance so far is {best:.3}; node {0}'s {volume} is {distance:.3} from the point. Is node {0} kept or pruned?",
             node.0
         ),
         vec![
@@ -189,7 +235,8 @@ pub(super) fn distance_bound<V: Vector>(
         answer,
         1 + usize::from(pruned),
         why,
-        "Measure the distance from the point to the nearest point of the volume (0 inside it), and compare it with the best so far.",
+        "Nothing in a volume is nearer than the volume itself: a node is worth visiting only if its volume is nearer than the best so far.",
+        About::nodes([node]),
     ))
 }
 
@@ -221,8 +268,18 @@ pub(super) fn child_order<V: Vector>(
             question.task,
             Task::FirstHit | Task::AnyHit | Task::AllHits | Task::Nearest
         );
+    // Nearer first: each answer shows its key, and the first's must differ from the
+    // others' as shown.
+    let first_key = siblings[0].1;
+    if keyed
+        && siblings[1..]
+            .iter()
+            .any(|&(_, k)| !shown_apart(k, first_key))
+    {
+        return None;
+    }
+    let key_name = key_name(at);
     let why = if keyed {
-        let key_name = if nearest { "distance" } else { "entry t" };
         let keys: Vec<String> = siblings
             .iter()
             .map(|(c, k)| format!("node {}: {key_name} {k:.3}", c.0))
@@ -233,7 +290,14 @@ pub(super) fn child_order<V: Vector>(
     };
     let choices = siblings
         .iter()
-        .map(|(c, _)| (Choice::Node(c.0), format!("node {}", c.0)))
+        .map(|&(c, k)| {
+            let label = if keyed {
+                format!("node {} ({key_name} {k:.3})", c.0)
+            } else {
+                format!("node {}", c.0)
+            };
+            (Choice::Node(c.0), label)
+        })
         .collect();
     Some(at.ask(
         format!(
@@ -245,11 +309,14 @@ pub(super) fn child_order<V: Vector>(
         Choice::Node(child.0),
         siblings.len(),
         why,
-        if nearest {
+        if !keyed {
+            "This version of the walk does not sort the children: which one is stored first?"
+        } else if nearest {
             "The walk goes nearer first: compare the distances from the point to the children's volumes."
         } else {
             "The walk goes near first: compare where the ray enters each child's volume."
         },
+        About::nodes(siblings.iter().map(|&(c, _)| c)),
     ))
 }
 
