@@ -67,6 +67,7 @@ fn split_planes_are_dashed_in_their_own_colour_and_named_in_the_legend() {
     let painter = egui::Painter::new(ctx, egui::LayerId::background(), screen.rect);
     let shapes = flat(bvhlab_app::lab2d::picture(
         h.state().lab().two(),
+        &bvhlab_app::model::predict::About::default(),
         screen.rect,
         &painter,
     ));
