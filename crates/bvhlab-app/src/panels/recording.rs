@@ -94,7 +94,7 @@ fn pseudocode_view(
                 // Jumps to the current line: playing at 200 steps a second, an animated
                 // scroll would never catch up.
                 .animated(false)
-                .show(ui, |ui| code_lines(code, line, palette, ui));
+                .show(ui, |ui| code_lines(code, line, index, palette, ui));
         });
     if !code.note.is_empty() {
         ui.label(RichText::new(code.note).weak());
@@ -112,10 +112,12 @@ type CounterRow = (&'static str, fn(&Counters) -> u64, u64, u64);
 fn code_lines(
     code: &crate::pseudocode::Pseudocode,
     line: Option<usize>,
+    index: usize,
     palette: crate::theme::CodePalette,
     ui: &mut egui::Ui,
 ) {
     ui.spacing_mut().item_spacing.y = 0.0;
+    let scrolled = ui.make_persistent_id(("code scrolled to", index));
     for (i, text) in code.lines.iter().enumerate() {
         let current = line == Some(i);
         // The arrow marks the line for screen readers and tests as well as the eye.
@@ -130,11 +132,11 @@ fn code_lines(
         }
         let response =
             ui.add(egui::Label::new(rich.size(12.0)).wrap_mode(egui::TextWrapMode::Extend));
-        // Scrolled to only while out of view: scrolling every frame kept the listing
-        // animating (and the page repainting) after the line was already shown.
-        let clip = ui.clip_rect();
-        let in_view = clip.top() <= response.rect.top() && response.rect.bottom() <= clip.bottom();
-        if current && !in_view {
+        // Scrolled to once, when the line changes: scrolling while it looked out of view
+        // kept the page repainting when the listing itself was below the panel's edge (out
+        // of view whatever the listing's scroll).
+        if current && ui.data(|d| d.get_temp::<usize>(scrolled)) != Some(i) {
+            ui.data_mut(|d| d.insert_temp(scrolled, i));
             response.scroll_to_me(None);
         }
     }
