@@ -239,10 +239,11 @@ fn layout(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
     if cx.ui.panels.tree_in(cx.lab.dimension()) {
         egui::Panel::bottom("tree")
             .resizable(true)
-            // A short window (an embedded lab) starts it at a third of its height.
+            // A short window (an embedded lab) starts it at under a third of its height
+            // (the view above it gives a row to the legend).
             .default_size(
                 crate::panels::tree::DEFAULT_PANEL_HEIGHT
-                    .min(ui.available_height() * 0.35)
+                    .min(ui.available_height() * 0.3)
                     .max(crate::panels::tree::MIN_PANEL_HEIGHT),
             )
             .min_size(crate::panels::tree::MIN_PANEL_HEIGHT)
@@ -253,6 +254,7 @@ fn layout(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
     egui::CentralPanel::default()
         .frame(egui::Frame::NONE.fill(crate::lab3d::BACKGROUND))
         .show(ui, |ui| {
+            crate::legend::strip(cx, ui);
             if three {
                 crate::lab3d::view(cx, ui);
             } else {
