@@ -179,7 +179,7 @@ fn side_panels(cx: &mut Cx<'_>, ui: &mut egui::Ui, width: f32) {
             .default_size((width * 0.3).clamp(220.0, 340.0))
             .max_size(controls_max.max(160.0))
             .show(ui, |ui| {
-                egui::ScrollArea::vertical().show(ui, |ui| crate::panels::controls(cx, ui));
+                crate::panels::controls(cx, ui, !cx.ui.panels.stepper);
             });
     }
     if cx.ui.panels.stepper {
@@ -204,11 +204,7 @@ fn side_tabs(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
     });
     ui.separator();
     match cx.ui.panels.tab {
-        SideTab::Controls => {
-            egui::ScrollArea::vertical()
-                .id_salt("controls tab")
-                .show(ui, |ui| crate::panels::controls(cx, ui));
-        }
+        SideTab::Controls => crate::panels::controls(cx, ui, true),
         SideTab::Stepper => {
             egui::ScrollArea::vertical()
                 .id_salt("stepper tab")
