@@ -179,7 +179,7 @@ fn side_panels(cx: &mut Cx<'_>, ui: &mut egui::Ui, width: f32) {
             .default_size((width * 0.3).clamp(220.0, 340.0))
             .max_size(controls_max.max(160.0))
             .show(ui, |ui| {
-                egui::ScrollArea::vertical().show(ui, |ui| crate::panels::controls(cx, ui));
+                crate::panels::controls(cx, ui, !cx.ui.panels.stepper);
             });
     }
     if cx.ui.panels.stepper {
@@ -204,11 +204,7 @@ fn side_tabs(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
     });
     ui.separator();
     match cx.ui.panels.tab {
-        SideTab::Controls => {
-            egui::ScrollArea::vertical()
-                .id_salt("controls tab")
-                .show(ui, |ui| crate::panels::controls(cx, ui));
-        }
+        SideTab::Controls => crate::panels::controls(cx, ui, true),
         SideTab::Stepper => {
             egui::ScrollArea::vertical()
                 .id_salt("stepper tab")
@@ -239,10 +235,11 @@ fn layout(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
     if cx.ui.panels.tree_in(cx.lab.dimension()) {
         egui::Panel::bottom("tree")
             .resizable(true)
-            // A short window (an embedded lab) starts it at a third of its height.
+            // A short window (an embedded lab) starts it at under a third of its height
+            // (the view above it gives a row to the legend).
             .default_size(
                 crate::panels::tree::DEFAULT_PANEL_HEIGHT
-                    .min(ui.available_height() * 0.35)
+                    .min(ui.available_height() * 0.3)
                     .max(crate::panels::tree::MIN_PANEL_HEIGHT),
             )
             .min_size(crate::panels::tree::MIN_PANEL_HEIGHT)
@@ -253,6 +250,7 @@ fn layout(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
     egui::CentralPanel::default()
         .frame(egui::Frame::NONE.fill(crate::lab3d::BACKGROUND))
         .show(ui, |ui| {
+            crate::legend::strip(cx, ui);
             if three {
                 crate::lab3d::view(cx, ui);
             } else {

@@ -43,6 +43,8 @@ pub mod frame_clock;
 pub mod lab2d;
 #[cfg(feature = "gui")]
 pub mod lab3d;
+#[cfg(feature = "gui")]
+pub mod legend;
 pub mod lessons;
 pub mod model;
 #[cfg(all(feature = "gui", not(target_arch = "wasm32")))]

@@ -286,65 +286,6 @@ pub fn clipped_plane(
     (lo < hi && lo.is_finite() && hi.is_finite()).then(|| (base + dir * lo, base + dir * hi))
 }
 
-/// What the colours of the view mean, at the top right of `rect`; `tested` names what a
-/// primitive test is of ("tested segment", "tested triangle").
-pub fn legend(painter: &egui::Painter, rect: egui::Rect, tested: &str) {
-    legend_with(painter, rect, tested, &[]);
-}
-
-/// [`legend`], followed by `more` entries (the bounding volumes drawn on the 2D canvas).
-pub fn legend_with(
-    painter: &egui::Painter,
-    rect: egui::Rect,
-    tested: &str,
-    more: &[(Color32, &str)],
-) {
-    use egui::{Align2, FontId};
-    let entries = [
-        (colors::VISITED, "visited"),
-        (colors::CULLED, "culled"),
-        (colors::PRUNED, "pruned"),
-        (colors::WAITING, "waiting"),
-        (colors::CURRENT, "current"),
-        (colors::TESTED, tested),
-        (colors::ANSWER, "answer"),
-    ];
-    let mut at = rect.right_top() + egui::vec2(-120.0, 10.0);
-    // A dark backing: the entries stay readable over the scene and its volumes, which
-    // reach into the corner after "Fit view".
-    let rows = entries.len() + more.len();
-    painter.rect_filled(
-        egui::Rect::from_min_size(
-            at - egui::vec2(6.0, 5.0),
-            egui::vec2(122.0, rows as f32 * 16.0 + 4.0),
-        ),
-        4.0,
-        Color32::from_black_alpha(170),
-    );
-    for &(color, label) in entries.iter().chain(more) {
-        let swatch = egui::Rect::from_min_size(at, egui::vec2(10.0, 10.0));
-        if color == colors::SPLIT {
-            // The split planes' entry is drawn as they are: a dashed line.
-            painter.extend(Shape::dashed_line(
-                &[swatch.left_center(), swatch.right_center()],
-                Stroke::new(2.0, color),
-                3.0,
-                2.0,
-            ));
-        } else {
-            painter.rect_filled(swatch, 2.0, color);
-        }
-        painter.text(
-            at + egui::vec2(16.0, 5.0),
-            Align2::LEFT_CENTER,
-            label,
-            FontId::proportional(12.0),
-            Color32::LIGHT_GRAY,
-        );
-        at.y += 16.0;
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -59,6 +59,10 @@ pub fn install(ctx: &egui::Context) {
                 font.size = font.size.max(SMALLEST_TEXT);
             }
             style.visuals.weak_text_color = Some(weak_text(theme));
+            // Thin scroll bars that stay drawn while there is more to see: egui's floating
+            // ones show only under the pointer, and a table or listing wider than its panel
+            // looked cut at the panel's edge ("naive: t in" read "naive: t i").
+            style.spacing.scroll = egui::style::ScrollStyle::thin();
             if theme == Theme::Dark {
                 // egui's dark body text (gray 140) is 5:1 on its panels; a little brighter
                 // so that weak text can be dimmer and still pass.

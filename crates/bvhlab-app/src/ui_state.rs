@@ -33,6 +33,8 @@ pub struct UiState {
     /// in words for screen readers ([`crate::a11y::describe`]), and its keys act while it
     /// has the focus.
     pub drawing: Option<egui::Id>,
+    /// The legend's strip this frame, above the view.
+    pub legend_rect: Option<egui::Rect>,
     /// A PNG export waiting for its screenshot.
     pub pending_png: Option<crate::panels::export::PendingPng>,
     /// Frame timing.

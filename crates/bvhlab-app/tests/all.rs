@@ -12,6 +12,7 @@ mod export;
 mod first_hour_words;
 mod heatmap;
 mod layout;
+mod lesson_layout;
 mod lesson_steps;
 mod lessons;
 mod native;

@@ -143,11 +143,14 @@ fn volume_table_swatches_match_the_canvas_and_hovering_a_row_lights_its_volume()
             swatch,
             "{kind:?} has a swatch in its colour beside its name"
         );
-        // The canvas's legend names it beside a square of the same colour.
+        // The view's legend (a strip above the canvas, issue 29) names it beside a square of
+        // the same colour.
+        let strip = h.state().ui.legend_rect.expect("the legend is shown");
         let canvas = h.state().canvas_screen().rect;
+        assert!(!strip.intersects(canvas), "the legend is off the canvas");
         let legend = shapes.iter().find_map(|s| match s {
             Shape::Text(t)
-                if t.galley.text() == colors::volume_name(kind) && canvas.contains(t.pos) =>
+                if t.galley.text() == colors::volume_name(kind) && strip.contains(t.pos) =>
             {
                 Some(t.pos)
             }
@@ -206,11 +209,11 @@ fn volume_table_swatches_match_the_canvas_and_hovering_a_row_lights_its_volume()
     h.hover_at(label_rect(&h, FitKind::SphereRitter.label()).center());
     settle(&mut h);
     assert_eq!(sphere_outlines(&h, FitKind::SphereRitter).len(), 1);
-    let canvas = h.state().canvas_screen().rect;
+    let strip = h.state().ui.legend_rect.expect("the legend is shown");
     let ritter = colors::volume_name(FitKind::SphereRitter);
     assert!(
         !painted(&h).iter().any(|s| matches!(s,
-            Shape::Text(t) if t.galley.text() == ritter && canvas.contains(t.pos))),
+            Shape::Text(t) if t.galley.text() == ritter && strip.contains(t.pos))),
         "the legend lists only the volumes switched on"
     );
 }

@@ -5,6 +5,7 @@
 
 use bvhlab_app::lessons::{self, goal_text};
 use bvhlab_app::model::goal::Quantity;
+use bvhlab_app::model::question::Task;
 use bvhlab_app::model::tools::{Tool, Tool3d};
 use bvhlab_app::model::{Action, Dimension, Lab, Lesson, LessonAction, PlaybackAction, Setup};
 use bvhlab_app::persist::{SavedState, ThreeState};
@@ -156,7 +157,6 @@ fn a_step_picks_the_tool_its_task_is_moved_with() {
         open(&mut lab, &lesson, step);
         let setup = &lesson.steps[step].setup;
         let at = format!("{} step {}", lesson.name, step + 1);
-        use bvhlab_app::model::question::Task;
         let wanted_ray = match setup.task {
             Some(Task::FirstHit | Task::AnyHit | Task::AllHits) => true,
             Some(Task::Nearest | Task::Range) => false,

@@ -123,13 +123,7 @@ pub fn canvas(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
             hover,
         );
         if lab.half.compare.is_some() {
-            clipped.text(
-                rect.left_top() + egui::vec2(8.0, 6.0),
-                egui::Align2::LEFT_TOP,
-                lab.half.lane_name(i),
-                egui::FontId::proportional(15.0),
-                crate::paint::colors::QUERY,
-            );
+            lane_title(&clipped, *rect, &lab.half.lane_name(i));
         }
     }
     keys::draw_picked(
@@ -141,21 +135,6 @@ pub fn canvas(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
         lab,
         cx.ui.canvas.key_handle,
     );
-    let splits = (0..halves.len()).any(|i| draw::draws_splits(lab, i));
-    let mut more: Vec<_> = splits
-        .then_some((crate::paint::colors::SPLIT, crate::paint::SPLIT_NAME))
-        .into_iter()
-        .chain(volumes::shown_volumes(lab).into_iter().map(|k| {
-            (
-                crate::paint::colors::volume(k),
-                crate::paint::colors::volume_name(k),
-            )
-        }))
-        .collect();
-    if !asked.is_empty() {
-        more.push((crate::paint::colors::ASKED, "asked about"));
-    }
-    crate::paint::legend_with(&painter, response.rect, "tested segment", &more);
     if lab.half.compare.is_some() {
         let x = halves[0].right() + 2.0;
         painter.vline(
@@ -164,6 +143,39 @@ pub fn canvas(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
             egui::Stroke::new(2.0, egui::Color32::from_gray(70)),
         );
     }
+}
+
+/// A compared view's title at the top left of its `half`, wrapped to the half's width (a
+/// long name, "AABB tree (split at the middle of the longest axis)", was cut at its edge).
+pub fn lane_title(painter: &egui::Painter, half: egui::Rect, name: &str) {
+    let galley = painter.layout(
+        name.to_owned(),
+        egui::FontId::proportional(15.0),
+        crate::paint::colors::QUERY,
+        (half.width() - 16.0).max(40.0),
+    );
+    painter.galley(
+        half.left_top() + egui::vec2(8.0, 6.0),
+        galley,
+        crate::paint::colors::QUERY,
+    );
+}
+
+/// The view's legend entries after the marks ([`crate::legend`]): the split planes when
+/// drawn, then the bounding volumes drawn, each one's colour and name.
+pub fn legend_volumes(lab: &Lab2d) -> Vec<(egui::Color32, &'static str)> {
+    let lanes = if lab.half.compare.is_some() { 2 } else { 1 };
+    let splits = (0..lanes).any(|i| draw::draws_splits(lab, i));
+    splits
+        .then_some((crate::paint::colors::SPLIT, crate::paint::SPLIT_NAME))
+        .into_iter()
+        .chain(volumes::shown_volumes(lab).into_iter().map(|k| {
+            (
+                crate::paint::colors::volume(k),
+                crate::paint::colors::volume_name(k),
+            )
+        }))
+        .collect()
 }
 
 /// The canvas rect, or its two halves with a small gap.

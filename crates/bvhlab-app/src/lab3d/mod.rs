@@ -164,12 +164,10 @@ pub fn view(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
             );
         }
         if lab.half.compare.is_some() {
-            painter.text(
-                half.left_top() + egui::vec2(8.0, 6.0),
-                Align2::LEFT_TOP,
-                lab.half.lane_name(i),
-                FontId::proportional(15.0),
-                colors::QUERY,
+            crate::lab2d::lane_title(
+                &painter.with_clip_rect(*half),
+                *half,
+                &lab.half.lane_name(i),
             );
         }
         drawn_lists.push(drawn);
@@ -185,7 +183,6 @@ pub fn view(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
     // A clicked ray runs straight into the screen: the inset shows it from the side.
     cx.ui.view3d.side = side_view::side_view(lab, lab.half.lane_at(0), halves[0], &painter);
     keys::draw_aim(ui, &painter, halves[0], response.id);
-    crate::paint::legend(&painter, rect, "tested triangle");
 }
 
 /// The leaf of lane `index`'s structure holding the triangle under `pointer` in the view of

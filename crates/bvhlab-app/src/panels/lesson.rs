@@ -1,6 +1,12 @@
-//! The Lessons panel, at the top of the controls: the lessons to start, or the step open
+//! The Lessons pane, at the top of the controls: the lessons to start, or the step open
 //! (its sentences, its formula, its task with each goal's live mark, and why it matters
-//! once reached), with buttons to move between steps.
+//! once reached), with buttons to move between steps, and Predict's question when "Step
+//! through" is not on screen.
+//!
+//! The pane's height is the window's business, never its contents': opening, closing or
+//! reaching a step, or a goal's mark changing while a field is typed in, moves nothing below
+//! it (a click meant for "Reload preset" after Close landed on Undo). What does not fit
+//! scrolls inside the pane.
 
 use egui::{Color32, RichText};
 
@@ -12,6 +18,69 @@ use crate::ui_state::Cx;
 const MET: (&str, Color32) = ("met", Color32::from_rgb(0x2e, 0x9d, 0x4e));
 /// A goal not met yet.
 const NOT_YET: &str = "not yet";
+
+/// The pane's height for a window `window_height` points tall: a share of it, so that the
+/// controls below keep room in a short (embedded) window.
+pub fn pane_height(window_height: f32) -> f32 {
+    (window_height * 0.45).clamp(140.0, 480.0)
+}
+
+/// The pane, at a fixed height. `with_question`: "Step through" is not on screen, so a
+/// lesson's step shows Predict's question below its text (pinned, in view whatever the
+/// text's scroll).
+pub fn pane(cx: &mut Cx<'_>, ui: &mut egui::Ui, with_question: bool) {
+    let height = pane_height(ui.ctx().content_rect().height());
+    let (rect, _) = ui.allocate_exact_size(
+        egui::vec2(ui.available_width(), height),
+        egui::Sense::hover(),
+    );
+    let question = with_question && cx.lab.lesson().is_some() && cx.lab.predict().on;
+    // The question's height as last drawn (the text gets the rest).
+    let question_id = ui.scope_id().with("lesson predict height");
+    let question_height = if question {
+        ui.ctx()
+            .data(|d| d.get_temp::<f32>(question_id))
+            .unwrap_or(90.0)
+            .min(height * 0.6)
+    } else {
+        0.0
+    };
+    let text_rect = egui::Rect::from_min_max(
+        rect.min,
+        egui::pos2(rect.max.x, rect.max.y - question_height),
+    );
+    let mut text_ui = ui.new_child(egui::UiBuilder::new().max_rect(text_rect));
+    text_ui.shrink_clip_rect(text_rect);
+    // Each step opens at its top.
+    let salt = cx.lab.lesson().map(|p| (p.lesson.name.clone(), p.step));
+    egui::ScrollArea::vertical()
+        .id_salt(("lesson pane", salt))
+        .auto_shrink(false)
+        .show(&mut text_ui, |ui| lessons(cx, ui));
+    if question {
+        let question_rect =
+            egui::Rect::from_min_max(egui::pos2(rect.min.x, text_rect.max.y), rect.max);
+        let mut q_ui = ui.new_child(egui::UiBuilder::new().max_rect(question_rect));
+        q_ui.shrink_clip_rect(question_rect);
+        q_ui.separator();
+        let rule = q_ui.cursor().min.y - question_rect.min.y;
+        let out = egui::ScrollArea::vertical()
+            .id_salt("lesson predict")
+            .max_height(height * 0.6 - rule)
+            .auto_shrink([false, true])
+            .show(&mut q_ui, |ui| {
+                ui.label(RichText::new("Predict").strong());
+                super::predict::question_block(cx, ui);
+            });
+        let used = out.inner_rect.max.y - question_rect.min.y;
+        let stored = ui.ctx().data(|d| d.get_temp::<f32>(question_id));
+        if stored.is_none_or(|h| (h - used).abs() > 0.5) {
+            ui.ctx().data_mut(|d| d.insert_temp(question_id, used));
+            ui.ctx()
+                .request_discard("the lesson's Predict question changed height");
+        }
+    }
+}
 
 /// The panel.
 pub fn lessons(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
@@ -72,14 +141,7 @@ pub fn lessons(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
     );
     ui.add(egui::Label::new(&step.text).wrap());
     if let Some(formula) = &step.formula {
-        // Formulas keep their lines (a wrapped formula misleads): a wide one scrolls.
-        egui::Frame::group(ui.style()).show(ui, |ui| {
-            egui::ScrollArea::horizontal()
-                .id_salt("lesson formula")
-                .show(ui, |ui| {
-                    ui.add(egui::Label::new(RichText::new(formula).monospace()).extend());
-                });
-        });
+        super::formula::formula_block(ui, formula);
     }
     if let Some(task) = &step.task {
         let reached = progress.reached_here();
@@ -93,7 +155,8 @@ pub fn lessons(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
         });
         for goal in &step.goals {
             let holds = goal.holds(cx.lab);
-            ui.horizontal(|ui| {
+            // Wrapped: a narrow panel puts the mark on the next line rather than cut it.
+            ui.horizontal_wrapped(|ui| {
                 ui.add_space(16.0);
                 let (mark, color) = if holds {
                     MET
@@ -114,6 +177,8 @@ pub fn lessons(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
 
 /// The lessons to start, each a button.
 fn choose(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
+    ui.heading("bvh-lab");
+    ui.label("Bounding volumes and spatial data structures, after the lecture's slides.");
     ui.add(
         egui::Label::new(
             "New here? A lesson walks the lecture step by step: each step sets up the lab, \

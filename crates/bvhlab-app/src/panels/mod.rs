@@ -11,6 +11,7 @@
 //!   ([`status`]). [`export`]: the canvas, the 3D view and the tree as SVG or PNG.
 
 pub mod export;
+pub mod formula;
 pub mod heat;
 pub mod lesson;
 pub mod mesh;
@@ -60,23 +61,28 @@ pub const PANELS_3D: [&dyn Panel; 5] = [
     &save_share::SaveShare,
 ];
 
-/// The controls column: what the lab is, the 2D / 3D switch, then the half's panels.
-pub fn controls(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
-    ui.heading("bvh-lab");
-    ui.label("Bounding volumes and spatial data structures, after the lecture's slides.");
+/// The controls column: the lessons' pane (kept in view), then, scrolling below it, the 2D /
+/// 3D switch and the half's panels. `with_question`: "Step through" is not on screen, so
+/// the lesson's pane shows Predict's question ([`lesson::pane`]).
+pub fn controls(cx: &mut Cx<'_>, ui: &mut egui::Ui, with_question: bool) {
     CollapsingHeader::new("Lessons")
         .default_open(true)
-        .show(ui, |ui| lesson::lessons(cx, ui));
-    dimension_switch(cx, ui);
-    let panels = match cx.lab.dimension() {
-        Dimension::Two => PANELS_2D,
-        Dimension::Three => PANELS_3D,
-    };
-    for panel in panels {
-        CollapsingHeader::new(panel.title())
-            .default_open(true)
-            .show(ui, |ui| panel.show(cx, ui));
-    }
+        .show(ui, |ui| lesson::pane(cx, ui, with_question));
+    ui.separator();
+    egui::ScrollArea::vertical()
+        .id_salt("controls")
+        .show(ui, |ui| {
+            dimension_switch(cx, ui);
+            let panels = match cx.lab.dimension() {
+                Dimension::Two => PANELS_2D,
+                Dimension::Three => PANELS_3D,
+            };
+            for panel in panels {
+                CollapsingHeader::new(panel.title())
+                    .default_open(true)
+                    .show(ui, |ui| panel.show(cx, ui));
+            }
+        });
 }
 
 /// The 2D / 3D switch.

@@ -31,6 +31,24 @@ pub fn predict_block(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
     if !state.on {
         return;
     }
+    question_block(cx, ui);
+    let exercise = lab.exercise();
+    let score = state.score(&exercise);
+    ui.label(
+        RichText::new(format!(
+            "{exercise}: {} right first time, {} after a hint, {} shown",
+            score.first_time, score.after_hint, score.shown
+        ))
+        .small(),
+    );
+}
+
+/// What Predict says at the step shown: the feedback on the last answer, and the question
+/// waiting with its answers as buttons (or why there is none). Also in the lesson's pane when
+/// "Step through" is not on screen: a step and its question belong together.
+pub fn question_block(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
+    let lab = cx.lab;
+    let state = lab.predict();
     let steps = lab.steps();
     let step = lab.shown_step();
     if let Some(feedback) = state.feedback_at(step) {
@@ -90,15 +108,6 @@ pub fn predict_block(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
             );
         }
     }
-    let exercise = lab.exercise();
-    let score = state.score(&exercise);
-    ui.label(
-        RichText::new(format!(
-            "{exercise}: {} right first time, {} after a hint, {} shown",
-            score.first_time, score.after_hint, score.shown
-        ))
-        .small(),
-    );
 }
 
 /// The keys that answer, in the order of the answers.

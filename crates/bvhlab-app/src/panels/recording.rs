@@ -94,7 +94,7 @@ fn pseudocode_view(
                 // Jumps to the current line: playing at 200 steps a second, an animated
                 // scroll would never catch up.
                 .animated(false)
-                .show(ui, |ui| code_lines(code, line, palette, ui));
+                .show(ui, |ui| code_lines(code, line, index, palette, ui));
         });
     if !code.note.is_empty() {
         ui.label(RichText::new(code.note).weak());
@@ -112,10 +112,12 @@ type CounterRow = (&'static str, fn(&Counters) -> u64, u64, u64);
 fn code_lines(
     code: &crate::pseudocode::Pseudocode,
     line: Option<usize>,
+    index: usize,
     palette: crate::theme::CodePalette,
     ui: &mut egui::Ui,
 ) {
     ui.spacing_mut().item_spacing.y = 0.0;
+    let scrolled = ui.make_persistent_id(("code scrolled to", index));
     for (i, text) in code.lines.iter().enumerate() {
         let current = line == Some(i);
         // The arrow marks the line for screen readers and tests as well as the eye.
@@ -130,11 +132,11 @@ fn code_lines(
         }
         let response =
             ui.add(egui::Label::new(rich.size(12.0)).wrap_mode(egui::TextWrapMode::Extend));
-        // Scrolled to only while out of view: scrolling every frame kept the listing
-        // animating (and the page repainting) after the line was already shown.
-        let clip = ui.clip_rect();
-        let in_view = clip.top() <= response.rect.top() && response.rect.bottom() <= clip.bottom();
-        if current && !in_view {
+        // Scrolled to once, when the line changes: scrolling while it looked out of view
+        // kept the page repainting when the listing itself was below the panel's edge (out
+        // of view whatever the listing's scroll).
+        if current && ui.data(|d| d.get_temp::<usize>(scrolled)) != Some(i) {
+            ui.data_mut(|d| d.insert_temp(scrolled, i));
             response.scroll_to_me(None);
         }
     }
@@ -151,7 +153,18 @@ fn counters_table<V: Vector>(
     let brute = rec.brute_cost;
     let build = rec.question.task == Task::Build;
     // A narrow panel (an embedded lab) keeps every column in view with shorter headers.
-    let narrow = ui.available_width() < NARROW_COUNTERS;
+    // The threshold is for rows named up to "primitive tests"; a k-d or BSP tree's "cell
+    // and plane tests" is wider, and so is the table.
+    let width = |text: &str| {
+        let font = egui::TextStyle::Body.resolve(ui.style());
+        ui.fonts_mut(|f| {
+            f.layout_no_wrap(text.to_owned(), font, egui::Color32::WHITE)
+                .size()
+                .x
+        })
+    };
+    let longer = (width(kind.bound_tests_name()) - width("primitive tests")).max(0.0);
+    let narrow = ui.available_width() < NARROW_COUNTERS + longer;
     egui::Grid::new(("step counters", index))
         .striped(true)
         .spacing(egui::vec2(if narrow { 6.0 } else { 10.0 }, 4.0))

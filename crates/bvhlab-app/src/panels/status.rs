@@ -14,6 +14,15 @@ use crate::ui_state::Cx;
 /// narrow window), and the buttons choose the tab.
 pub fn status_line(cx: &mut Cx<'_>, ui: &mut egui::Ui, shared: bool) {
     let lab = cx.lab;
+    // Two rows in a narrow window, where a message wraps; one in a wide one.
+    let rows = if ui.available_width() < crate::app::NARROW {
+        2
+    } else {
+        1
+    };
+    let row = ui.text_style_height(&egui::TextStyle::Body);
+    // A little over: a wrapped label is a fraction of a point taller than its rows.
+    ui.set_min_height(rows as f32 * row + 2.0);
     let three = lab.dimension() == Dimension::Three;
     let message = lab
         .message()
@@ -42,17 +51,30 @@ pub fn status_line(cx: &mut Cx<'_>, ui: &mut egui::Ui, shared: bool) {
             ui.label(format!("{r} ·"));
         }
         // What is left, from the left: a message wraps (it must be read whole), a hint is
-        // cut short.
+        // cut short. The line keeps its height whatever it says: a message appearing moved
+        // the view and the tree diagram above it.
         ui.with_layout(egui::Layout::left_to_right(egui::Align::Center), |ui| {
             match message {
-                Some(m) => {
-                    ui.add(egui::Label::new(RichText::new(m).color(colors::SELECTED)).wrap())
-                }
+                Some(m) => ui.add(message_label(ui, m, rows)),
                 None if three => ui.add(egui::Label::new(mesh_status(lab.three())).truncate()),
                 None => ui.add(egui::Label::new(lab.two().tool.hint()).truncate()),
             };
         });
     });
+}
+
+/// A message wrapped to at most `rows` rows (the status line's height), cut with "…" past
+/// them; a screen reader reads it whole (the label's text is the whole message).
+fn message_label(ui: &egui::Ui, message: String, rows: usize) -> egui::Label {
+    let text = RichText::new(message).color(colors::SELECTED);
+    let mut job = std::sync::Arc::unwrap_or_clone(egui::WidgetText::from(text).into_layout_job(
+        ui.style(),
+        egui::FontSelection::Default,
+        egui::Align::Center,
+    ));
+    job.wrap.max_rows = rows;
+    job.wrap.overflow_character = Some('…');
+    egui::Label::new(job).wrap()
 }
 
 /// The 3D half's status: the mesh and its build.
