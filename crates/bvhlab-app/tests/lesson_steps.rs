@@ -11,16 +11,7 @@ use bvhlab_app::model::{Action, Dimension, Lab, Lesson, LessonAction, PlaybackAc
 use bvhlab_app::persist::{SavedState, ThreeState};
 use std::sync::Arc;
 
-/// Frames enough for a held playback step, a 3D load and its build to take effect.
-fn tick(lab: &mut Lab) {
-    for _ in 0..3 {
-        lab.apply(Action::Tick {
-            seconds: 0.0,
-            build_ms: 1e6,
-        })
-        .expect("a tick applies");
-    }
-}
+use crate::common::tick_lab as tick;
 
 fn open(lab: &mut Lab, lesson: &Arc<Lesson>, step: usize) {
     lab.apply(Action::Lesson(LessonAction::Open {
@@ -370,4 +361,35 @@ fn a_goal_shows_its_value_beside_what_its_target_stands_for() {
         "{}",
         goal_text::now_text(compared, &lab)
     );
+}
+
+#[test]
+fn every_2d_step_frames_its_ray_handles_and_point_with_the_scene() {
+    // A ray that starts outside the scene and points away from it was framed out: with
+    // Predict on at step 0 the student saw nothing of the query.
+    let size = bvhlab::glam::Vec2::new(800.0, 500.0);
+    let mut framed = 0;
+    for (lesson, step) in steps() {
+        let mut lab = Lab::default();
+        open(&mut lab, &lesson, step);
+        if lab.dimension() != Dimension::Two {
+            continue;
+        }
+        lab.apply(bvhlab_app::model::Action2d::FrameScene(size).into())
+            .expect("the scene frames");
+        let two = lab.two();
+        let camera = two.camera;
+        let handles = two.ray.map(|r| [r.origin, r.target]);
+        for p in handles.into_iter().flatten().chain(two.point) {
+            let offset = (p - camera.center) * camera.scale;
+            assert!(
+                offset.x.abs() <= size.x / 2.0 && offset.y.abs() <= size.y / 2.0,
+                "{} step {}: {p} is {offset} from the centre of an {size} canvas",
+                lesson.name,
+                step + 1
+            );
+            framed += 1;
+        }
+    }
+    assert!(framed >= 20, "only {framed} handles and points checked");
 }

@@ -10,16 +10,7 @@ use bvhlab_app::lessons::{self, format};
 use bvhlab_app::model::goal::Quantity;
 use bvhlab_app::model::{Action, Lab, LessonAction, LessonProgress, PlaybackAction};
 
-/// A frame's worth of time, so a held playback step and a 3D load take effect.
-fn tick(lab: &mut Lab) {
-    for _ in 0..3 {
-        lab.apply(Action::Tick {
-            seconds: 0.0,
-            build_ms: 1e6,
-        })
-        .expect("a tick applies");
-    }
-}
+use crate::common::tick_lab as tick;
 
 /// Each goal of the step shown with its value now, for a failure's message.
 fn goals_now(lab: &Lab) -> String {

@@ -192,23 +192,24 @@ impl Lab2d {
         );
     }
 
-    /// What "Fit view" frames: the scene and, while they are shown, its bounding volumes.
+    /// What "Fit view" frames: the scene, its bounding volumes while they are shown, and the
+    /// ray's handles and the query point.
     fn framed(&self) -> Option<(Vec2, Vec2)> {
-        let (lo, hi) = self.scene.bounds()?;
-        match self.fits() {
-            Some(fits) if self.display.volumes => {
-                let volumes = fits.bounds(&self.volumes);
-                Some((lo.min(volumes.min), hi.max(volumes.max)))
-            }
-            _ => Some((lo, hi)),
+        let (mut lo, mut hi) = self.scene.bounds()?;
+        if let Some(fits) = self.fits().filter(|_| self.display.volumes) {
+            let volumes = fits.bounds(&self.volumes);
+            (lo, hi) = (lo.min(volumes.min), hi.max(volumes.max));
         }
+        // The query's handles too: a lesson's ray that starts outside the scene and points
+        // away from it was framed out, and with Predict on at step 0 nothing of the query
+        // showed.
+        let handles = self.ray.map(|r| [r.origin, r.target]);
+        for p in handles.into_iter().flatten().chain(self.point) {
+            (lo, hi) = (lo.min(p), hi.max(p));
+        }
+        Some((lo, hi))
     }
 
-    /// Replaces the scene with `preset`'s, with the structure it is best seen with.
-    ///
-    /// A preset is a section of the lecture: it starts clean, so the last section's
-    /// overlays (the ray and point, the bounding volumes, the slab test, the two SAT boxes)
-    /// do not bury the next idea. The bounding-volume preset shows its volumes.
     /// Everything but the scene's undo history back to how [`Lab2d::with_preset`] opens the
     /// preset chosen (a lesson step's start: [`Lab::apply_lesson`](super::Lab)).
     pub(super) fn start_afresh(&mut self) {
@@ -217,6 +218,11 @@ impl Lab2d {
         self.history = history;
     }
 
+    /// Replaces the scene with `preset`'s, with the structure it is best seen with.
+    ///
+    /// A preset is a section of the lecture: it starts clean, so the last section's
+    /// overlays (the ray and point, the bounding volumes, the slab test, the two SAT boxes)
+    /// do not bury the next idea. The bounding-volume preset shows its volumes.
     fn load_preset(&mut self, preset: Preset) {
         let (scene, settings) = preset.build();
         let old = std::mem::replace(&mut self.preset, preset);

@@ -257,12 +257,18 @@ impl<V: Vector> Painting<'_, V> {
             if !self.clip.expand(r + stroke.width).contains(at) {
                 continue;
             }
-            if self.outline[id].is_leaf() {
-                let square = Rect::from_center_size(at, vec2(2.0 * r, 2.0 * r));
-                out.push(Shape::rect_stroke(square, 0.0, stroke, StrokeKind::Middle));
-            } else {
-                out.push(Shape::circle_stroke(at, r, stroke));
-            }
+            out.push(self.ring(id, at, r, stroke));
+        }
+    }
+
+    /// A ring of radius `r` around node `id` at `at`: a square for a leaf, a circle
+    /// otherwise, as the node is drawn.
+    fn ring(&self, id: usize, at: Pos2, r: f32, stroke: Stroke) -> Shape {
+        if self.outline[id].is_leaf() {
+            let square = Rect::from_center_size(at, vec2(2.0 * r, 2.0 * r));
+            Shape::rect_stroke(square, 0.0, stroke, StrokeKind::Middle)
+        } else {
+            Shape::circle_stroke(at, r, stroke)
         }
     }
 
@@ -281,12 +287,7 @@ impl<V: Vector> Painting<'_, V> {
             if !self.clip.expand(r + LABEL_SIZE).contains(at) {
                 continue;
             }
-            if self.outline[id].is_leaf() {
-                let square = Rect::from_center_size(at, vec2(2.0 * r, 2.0 * r));
-                out.push(Shape::rect_stroke(square, 0.0, stroke, StrokeKind::Middle));
-            } else {
-                out.push(Shape::circle_stroke(at, r, stroke));
-            }
+            out.push(self.ring(id, at, r, stroke));
             let galley = text("?".to_owned(), LABEL_SIZE + 2.0, colors::ASKED);
             let corner = at + vec2(r + 1.0, -r - galley.size().y * 0.5);
             out.push(Shape::galley(corner, galley, colors::ASKED));

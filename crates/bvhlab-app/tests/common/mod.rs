@@ -47,6 +47,18 @@ fn harness(app: LabApp) -> Harness<'static, LabApp> {
     h
 }
 
+/// Three frames' worth of ticks on a lab without a window, so that a held playback step, a
+/// 3D load and its build take effect.
+pub fn tick_lab(lab: &mut bvhlab_app::model::Lab) {
+    for _ in 0..3 {
+        lab.apply(bvhlab_app::model::Action::Tick {
+            seconds: 0.0,
+            build_ms: 1e6,
+        })
+        .expect("a tick applies");
+    }
+}
+
 /// Runs until the UI settles, then one more frame: the control panel is drawn before the
 /// canvas, so a change the canvas made in the last frame shows in the panel one frame later.
 pub fn settle(h: &mut Harness<'_, LabApp>) {
