@@ -321,12 +321,7 @@ fn frontier_view<V: Vector>(snap: &Snapshot<V>, ui: &mut egui::Ui) {
             }
         })
         .collect();
-    let more = snap.frontier.len().saturating_sub(SHOWN);
-    let tail = if more > 0 {
-        format!(" … and {more} more")
-    } else {
-        String::new()
-    };
+    let tail = and_more(snap.frontier.len().saturating_sub(SHOWN));
     ui.colored_label(
         colors::WAITING,
         format!(
@@ -362,14 +357,18 @@ fn best_view<V: Vector>(task: Task, snap: &Snapshot<V>, ui: &mut egui::Ui) {
             _ => format!("#{p} at t = {v:.3}"),
         })
         .collect();
-    let more = snap.best.len().saturating_sub(items.len());
-    let tail = if more > 0 {
-        format!(" … and {more} more")
-    } else {
-        String::new()
-    };
+    let tail = and_more(snap.best.len().saturating_sub(items.len()));
     ui.colored_label(
         colors::ANSWER,
         format!("{what}: {}{tail}", items.join(", ")),
     );
+}
+
+/// What a list cut short says after its last item: ` … and 3 more` (nothing when `more` is 0).
+fn and_more(more: usize) -> String {
+    if more > 0 {
+        format!(" … and {more} more")
+    } else {
+        String::new()
+    }
 }
