@@ -104,6 +104,12 @@ export class BvhLab {
 
   /// Opens lesson `name` at `step` (1 is its first).
   goToLesson(lesson, step = 1) { return this.send({ type: 'go-to-lesson', lesson, step }); }
+  /// Opens a teacher's lesson from the text of its .toml file (the format of the lab's own
+  /// lessons, crates/bvhlab-app/lessons/README.md) at `step`; rejects with `file:line: why`
+  /// when the file is wrong, changing nothing.
+  loadLesson(text, file = 'lesson.toml', step = 1) {
+    return this.send({ type: 'load-lesson', text, file, step });
+  }
 
   /// Switches Predict on or off: the lab asks before each step that decides something.
   predict(on = true) { return this.send({ type: 'predict', on }); }

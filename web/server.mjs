@@ -38,6 +38,7 @@ const types = {
   '.svg': 'image/svg+xml',
   '.ico': 'image/x-icon',
   '.txt': 'text/plain; charset=utf-8',
+  '.toml': 'application/toml; charset=utf-8',
 };
 
 function policyFor(inlineScripts = []) {
@@ -49,7 +50,7 @@ function policyFor(inlineScripts = []) {
     ["script-src 'self' 'wasm-unsafe-eval'", ...hashes].join(' '),
     "style-src 'self'",
     "img-src 'self' data: blob:",
-    "connect-src 'self'",
+    "connect-src 'self' https:",
     "object-src 'none'",
     "base-uri 'none'",
     "form-action 'none'",

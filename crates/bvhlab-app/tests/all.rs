@@ -27,6 +27,7 @@ mod render3d;
 mod shaders;
 mod shown_as_said;
 mod stepping;
+mod teacher_lessons;
 mod tree_diagram;
 mod ui;
 mod view3d;

@@ -16,7 +16,7 @@ use crate::persist::{STORAGE_KEY, SplitName, StructureName, TaskName, VariantNam
 pub use panels::{PanelsShown, PanelsShown as Panels, SideTab};
 
 /// The parameters the lab reads, with what each does (the README's table is this list).
-pub const PARAMETERS: [(&str, &str); 17] = [
+pub const PARAMETERS: [(&str, &str); 18] = [
     (
         "preset",
         "a 2D scene: one of the presets' slugs (kd-tree, quadtree, 10k, ...)",
@@ -67,6 +67,10 @@ pub const PARAMETERS: [(&str, &str); 17] = [
         "opens a lesson at its step (the Lessons panel lists them: queries, bounding-volumes, ...)",
     ),
     (
+        "lesson-url",
+        "opens a teacher's lesson file (.toml) from this address: the lab's own server, or one that allows it (CORS); the saved progress in it comes back",
+    ),
+    (
         "panels",
         "the panels shown beside the view, comma-separated: controls, stepper, tree (none: panels=)",
     ),
@@ -105,6 +109,8 @@ pub struct StartParams {
     pub variant: Option<VariantName>,
     /// `lesson=`: a lesson's name.
     pub lesson: Option<String>,
+    /// `lesson-url=`: the address of a teacher's lesson file.
+    pub lesson_url: Option<String>,
     /// `point=`: 2 or 3 numbers.
     pub point: Option<Vec<f32>>,
     /// `polygon=`: a polygon's corners, 2 numbers each.
@@ -201,6 +207,7 @@ impl StartParams {
                 );
             }
             "lesson" => self.lesson = Some(value.to_owned()),
+            "lesson-url" => self.lesson_url = Some(lesson_url(value)?),
             "ray" => self.ray = Some(numbers("ray", value, &[4, 6])?),
             "point" => self.point = Some(numbers("point", value, &[2, 3])?),
             "obbs" => self.obbs = Some(numbers("obbs", value, &[10])?),
@@ -276,6 +283,9 @@ impl StartParams {
         }
         if let Some(lesson) = &self.lesson {
             parts.push(format!("lesson={lesson}"));
+        }
+        if let Some(url) = &self.lesson_url {
+            parts.push(format!("lesson-url={url}"));
         }
         if let Some(step) = self.step {
             parts.push(format!("step={step}"));
@@ -376,6 +386,26 @@ fn origin(value: &str) -> Result<String, String> {
         Err(format!(
             "the address's origin \"{}\" is not an origin like https://course.example.edu (no \
              path, no wildcard)",
+            short(value)
+        ))
+    }
+}
+
+/// A `lesson-url=` value: an address on the web (`https://...`, `http://...`) or relative to
+/// the lab's page (`lessons/mine.toml`); no other scheme (`data:`, `javascript:`, `file:`).
+fn lesson_url(value: &str) -> Result<String, String> {
+    let scheme = value
+        .split_once(':')
+        .map(|(scheme, _)| scheme)
+        .filter(|s| !s.is_empty() && s.chars().all(|c| c.is_ascii_alphanumeric() || c == '+'));
+    let valid = !value.trim().is_empty()
+        && scheme.is_none_or(|s| s.eq_ignore_ascii_case("http") || s.eq_ignore_ascii_case("https"));
+    if valid {
+        Ok(value.trim().to_owned())
+    } else {
+        Err(format!(
+            "the address's lesson-url \"{}\" is not an http(s) address or a path on this \
+             server",
             short(value)
         ))
     }

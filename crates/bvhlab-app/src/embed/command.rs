@@ -85,6 +85,18 @@ pub enum Command {
         #[serde(default = "first_step")]
         step: usize,
     },
+    /// Opens a teacher's lesson file (its TOML text) at a step, as dropping the file on the
+    /// lab does; the same checks and limits.
+    LoadLesson {
+        /// The lesson file's text.
+        text: String,
+        /// The file's name, for messages and the lesson's name (`my-lesson.toml`).
+        #[serde(default = "lesson_file_name")]
+        file: String,
+        /// The step, from 1.
+        #[serde(default = "first_step")]
+        step: usize,
+    },
     /// Switches Predict on or off (on: playback goes to the start when at the end).
     Predict {
         /// Whether the lab asks before each step.
@@ -187,18 +199,17 @@ impl Command {
             Self::GoToStep { step } => one(PlaybackAction::GoTo(step).into()),
             Self::Play { playing } => one(PlaybackAction::Play(playing).into()),
             Self::GoToLesson { lesson, step } => {
-                let lesson = crate::lessons::find(&lesson)?;
-                if step == 0 || step > lesson.steps.len() {
-                    return Err(format!(
-                        "the lesson \"{}\" has steps 1 to {}; step is {step}",
-                        lesson.name,
-                        lesson.steps.len()
-                    ));
-                }
-                one(Action::Lesson(LessonAction::Open {
-                    lesson,
-                    step: step - 1,
-                }))
+                // The teacher's lesson open is found by its name too.
+                let open = lab
+                    .lesson()
+                    .map(|p| p.lesson.clone())
+                    .filter(|l| l.teacher.is_some() && l.name == lesson);
+                let lesson = open.map_or_else(|| crate::lessons::find(&lesson), Ok)?;
+                one(open_at(lesson, step)?)
+            }
+            Self::LoadLesson { text, file, step } => {
+                let lesson = crate::lessons::format::read_teacher(&file, text.as_bytes())?;
+                one(open_at(std::sync::Arc::new(lesson), step)?)
             }
             Self::Predict { on } => one(PredictAction::On(on).into()),
             Self::Answer { choice } => {
@@ -239,6 +250,26 @@ impl Command {
             }
         }
     }
+}
+
+/// Opens `lesson` at `step` (from 1), or says which steps it has.
+fn open_at(lesson: std::sync::Arc<crate::model::Lesson>, step: usize) -> Result<Action, String> {
+    if step == 0 || step > lesson.steps.len() {
+        return Err(format!(
+            "the lesson \"{}\" has steps 1 to {}; step is {step}",
+            lesson.name,
+            lesson.steps.len()
+        ));
+    }
+    Ok(Action::Lesson(LessonAction::Open {
+        lesson,
+        step: step - 1,
+    }))
+}
+
+/// The file name of a lesson sent without one.
+fn lesson_file_name() -> String {
+    "lesson.toml".to_owned()
 }
 
 /// A lesson's first step, when a command names none.

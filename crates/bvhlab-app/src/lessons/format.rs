@@ -6,7 +6,13 @@ use toml::Spanned;
 
 use super::goal_text;
 use crate::address::StartParams;
-use crate::model::{Lesson, LessonStep};
+use crate::model::{Lesson, LessonStep, TeacherFile};
+
+/// The largest lesson file a teacher may give the lab at run time, in bytes.
+pub const MAX_TEACHER_BYTES: usize = 256 * 1024;
+
+/// The most steps a teacher's lesson may have.
+pub const MAX_TEACHER_STEPS: usize = 200;
 
 /// A lesson file as written.
 #[derive(Deserialize)]
@@ -54,9 +60,14 @@ pub fn read(file: &str, text: &str) -> Result<Lesson, String> {
         if let Some(problem) = params.problems.first() {
             return Err(format!("{}: the setup: {problem}", at(step.setup.span())));
         }
-        if params.lesson.is_some() || !params.origins.is_empty() || params.lab.is_some() {
+        if params.lesson.is_some()
+            || params.lesson_url.is_some()
+            || !params.origins.is_empty()
+            || params.lab.is_some()
+        {
             return Err(format!(
-                "{}: the setup says where the lab starts: lesson, lab and origin belong to a page",
+                "{}: the setup says where the lab starts: lesson, lesson-url, lab and origin \
+                 belong to a page",
                 at(step.setup.span())
             ));
         }
@@ -107,7 +118,57 @@ pub fn read(file: &str, text: &str) -> Result<Lesson, String> {
         title: parsed.title,
         section: parsed.section,
         steps,
+        teacher: None,
     })
+}
+
+/// A lesson file a teacher gives the lab while it runs (`file`: its name or address), read
+/// as [`read`] reads the built-in ones, within the limits a file from outside gets: at most
+/// [`MAX_TEACHER_BYTES`] of UTF-8 and [`MAX_TEACHER_STEPS`] steps (its setups already keep to
+/// the address's limits). Its text is shown as plain text: the panel draws no markup and
+/// follows no links, so `<script>` in a title is only characters.
+///
+/// # Errors
+/// `file:line: what is wrong`, like the built-in check.
+pub fn read_teacher(file: &str, bytes: &[u8]) -> Result<Lesson, String> {
+    if bytes.len() > MAX_TEACHER_BYTES {
+        return Err(format!(
+            "{file}:1: the file has {} KiB; a lesson may have at most {} KiB",
+            bytes.len().div_ceil(1024),
+            MAX_TEACHER_BYTES / 1024
+        ));
+    }
+    let text = std::str::from_utf8(bytes).map_err(|e| {
+        let line = line_of(&String::from_utf8_lossy(bytes), e.valid_up_to());
+        format!("{file}:{line}: the file is not UTF-8 text")
+    })?;
+    let short = file.rsplit(['/', '\\']).next().unwrap_or(file);
+    let short = short.split(['?', '#']).next().unwrap_or(short);
+    let mut lesson = read(file, text)?;
+    if lesson.steps.len() > MAX_TEACHER_STEPS {
+        return Err(format!(
+            "{file}:1: the lesson has {} steps; a lesson may have at most {MAX_TEACHER_STEPS}",
+            lesson.steps.len()
+        ));
+    }
+    lesson.name = lesson_name(short)
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() {
+                c.to_ascii_lowercase()
+            } else {
+                '-'
+            }
+        })
+        .collect();
+    if lesson.name.trim_matches('-').is_empty() {
+        "teachers-lesson".clone_into(&mut lesson.name);
+    }
+    lesson.teacher = Some(TeacherFile {
+        file: file.to_owned(),
+        text: text.into(),
+    });
+    Ok(lesson)
 }
 
 /// `slab-test` for `03-slab-test.toml`: the file's name without its order number and

@@ -7,6 +7,7 @@
 
 pub mod format;
 pub mod goal_text;
+pub mod open;
 pub mod report;
 
 use std::sync::{Arc, OnceLock};

@@ -21,6 +21,19 @@ pub struct Lesson {
     pub section: String,
     /// Its steps, in order.
     pub steps: Vec<LessonStep>,
+    /// Where a teacher's lesson came from (a file opened in the lab, not one built in): kept
+    /// so that the lab can save it with the student's state and show it as the teacher's.
+    pub teacher: Option<TeacherFile>,
+}
+
+/// A lesson file a teacher gave the lab while it runs (dropped, picked, sent by the
+/// embedding page or named by the address's `lesson-url=`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct TeacherFile {
+    /// The file's name (`my-lesson.toml`), or the address it came from.
+    pub file: String,
+    /// The file's text, as given.
+    pub text: Arc<str>,
 }
 
 /// One step of a lesson.
@@ -105,7 +118,10 @@ impl Lab {
             ));
         };
         let reached = match self.lesson.take() {
-            Some(open) if open.lesson.name == lesson.name => open.reached,
+            // The same lesson: a teacher's file opened again with changes starts over.
+            Some(open) if Arc::ptr_eq(&open.lesson, &lesson) || open.lesson == lesson => {
+                open.reached
+            }
             _ => vec![false; lesson.steps.len()],
         };
         // The lesson is put back only once the step's state is in place: its actions must

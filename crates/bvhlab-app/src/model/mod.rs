@@ -65,7 +65,7 @@ pub use action::{Action, Action2d, Action3d, HalfAction, PlaybackAction};
 pub use dimension::Dimension;
 pub use lab2d::Lab2d;
 pub use lab3d::Lab3d;
-pub use lesson::{Lesson, LessonAction, LessonProgress, LessonStep};
+pub use lesson::{Lesson, LessonAction, LessonProgress, LessonStep, TeacherFile};
 pub use setup::Setup;
 
 /// What the status line says after an action.

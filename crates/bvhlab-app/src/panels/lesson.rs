@@ -92,6 +92,17 @@ pub fn lessons(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
     let step = progress.current();
     let count = lesson.steps.len();
     ui.label(RichText::new(format!("{} {}", lesson.section, lesson.title)).strong());
+    if let Some(teacher) = &lesson.teacher {
+        // Said in words: a student must know this text is not the lab's own.
+        ui.add(
+            egui::Label::new(
+                RichText::new(format!("A teacher's lesson, from {}", teacher.file))
+                    .small()
+                    .italics(),
+            )
+            .wrap(),
+        );
+    }
     ui.label(format!(
         "Step {} of {}: {}",
         progress.step + 1,
@@ -194,6 +205,16 @@ fn choose(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
                 step: 0,
             }));
         }
+    }
+    ui.separator();
+    ui.label(RichText::new("Teachers").strong());
+    if ui
+        .button("Open a lesson file…")
+        .on_hover_text("A lesson written as a .toml file (or drop the file on the lab)")
+        .clicked()
+        && let Some(said) = crate::persist::pick_lesson_file(ui.ctx())
+    {
+        cx.act(said);
     }
 }
 

@@ -49,6 +49,24 @@ pub fn import_scene(ctx: &egui::Context) -> Option<Action> {
     }
 }
 
+/// "Open a lesson file…": the browser's file dialog for `.toml` lesson files (opened when
+/// read, by [`poll_imports`]); natively, says to drop the file on the window.
+pub fn pick_lesson_file(ctx: &egui::Context) -> Option<Action> {
+    #[cfg(target_arch = "wasm32")]
+    {
+        crate::web::pick_file(ctx, ".toml")
+            .err()
+            .map(|e| say(format!("The file dialog could not be opened: {e}.")))
+    }
+    #[cfg(not(target_arch = "wasm32"))]
+    {
+        let _ = ctx;
+        Some(say(
+            "Drop a .toml lesson file on the window to open it.".to_owned()
+        ))
+    }
+}
+
 /// A message for the status line.
 fn say(message: String) -> Action {
     Action::SetMessage(Some(message))
@@ -121,6 +139,9 @@ pub fn poll_imports(ctx: &egui::Context) -> Vec<Action> {
     for news in crate::web::take_news() {
         match news {
             crate::web::News::Opened { name, bytes } => actions.extend(open_named(&name, bytes)),
+            crate::web::News::FetchedLesson { url, bytes } => {
+                actions.extend(crate::lessons::open::open_lesson_file(&url, bytes));
+            }
             crate::web::News::Copied(Ok(())) => {
                 actions.push(say("Share link copied to the clipboard.".to_owned()));
             }
@@ -148,13 +169,16 @@ pub fn poll_imports(ctx: &egui::Context) -> Vec<Action> {
 /// mesh file (by its extension) opens in the 3D view; anything else is read as a scene
 /// file.
 fn open_named(name: &str, bytes: Result<Vec<u8>, String>) -> Vec<Action> {
+    let short = name.rsplit(['/', '\\']).next().unwrap_or(name);
+    if crate::lessons::open::is_lesson_file(name) {
+        return crate::lessons::open::open_lesson_file(short, bytes);
+    }
     if crate::panels::mesh::is_mesh_file(name) {
         return match bytes {
             Ok(bytes) => {
-                let short = name.rsplit(['/', '\\']).next().unwrap_or(name).to_owned();
                 vec![
                     Action3d::OpenMesh(crate::model::mesh::MeshSource::File {
-                        name: short,
+                        name: short.to_owned(),
                         bytes: bytes.into(),
                     })
                     .into(),
@@ -178,11 +202,28 @@ fn open_named(name: &str, bytes: Result<Vec<u8>, String>) -> Vec<Action> {
 
 /// The most bytes read from a file called `name`: a mesh may be large, a scene file not.
 pub fn read_limit(name: &str) -> usize {
-    if crate::panels::mesh::is_mesh_file(name) {
+    if crate::lessons::open::is_lesson_file(name) {
+        crate::lessons::format::MAX_TEACHER_BYTES
+    } else if crate::panels::mesh::is_mesh_file(name) {
         bvhlab_meshio::MAX_BYTES
     } else {
         MAX_FILE_BYTES
     }
+}
+
+/// Why a file of `len` bytes is not read (over `limit`), in MiB or, for small limits (a
+/// lesson's), in KiB.
+pub fn too_large(len: u64, limit: usize) -> String {
+    let (unit, name) = if limit >= 1 << 20 {
+        (f64::from(1 << 20), "MiB")
+    } else {
+        (1024.0, "KiB")
+    };
+    format!(
+        "it is {:.1} {name}; the lab reads at most {} {name}",
+        len as f64 / unit,
+        limit as f64 / unit
+    )
 }
 
 /// A file's bytes, refusing files over [`read_limit`] before reading them.
@@ -193,11 +234,7 @@ fn read_limited(path: &std::path::Path) -> Result<Vec<u8>, String> {
     let len = file.metadata().map_err(|e| e.to_string())?.len();
     let limit = read_limit(&path.display().to_string());
     if len > limit as u64 {
-        return Err(format!(
-            "it is {:.1} MiB; the lab reads at most {} MiB",
-            len as f64 / f64::from(1 << 20),
-            limit >> 20
-        ));
+        return Err(too_large(len, limit));
     }
     let mut bytes = Vec::new();
     file.take(limit as u64 + 1)

@@ -35,7 +35,8 @@ mod storage;
 
 #[cfg(feature = "gui")]
 pub use actions::{
-    copy_share_link, export_scene, import_scene, poll_imports, read_limit, share_link_text,
+    copy_share_link, export_scene, import_scene, pick_lesson_file, poll_imports, read_limit,
+    share_link_text, too_large,
 };
 pub use file::{from_file, to_file};
 pub use link::{LINK_PREFIX, from_fragment, link_fragment};

@@ -195,8 +195,16 @@ fn lesson_and_note(
 /// The saved lesson, found among the lab's, at a step it has.
 fn lesson(saved: &super::state::LessonState) -> Result<crate::model::LessonProgress, String> {
     let closed = "; it was closed, and the rest of the state is back.";
-    let lesson =
-        crate::lessons::find(&saved.name).map_err(|e| format!("The saved lesson: {e}{closed}"))?;
+    let lesson = match &saved.text {
+        Some(text) => {
+            let file = saved.file.as_deref().unwrap_or("the saved lesson");
+            crate::lessons::format::read_teacher(file, text.as_bytes())
+                .map(std::sync::Arc::new)
+                .map_err(|e| format!("The saved teacher's lesson: {e}{closed}"))?
+        }
+        None => crate::lessons::find(&saved.name)
+            .map_err(|e| format!("The saved lesson: {e}{closed}"))?,
+    };
     let steps = lesson.steps.len();
     if saved.step >= steps || saved.reached.len() > steps {
         return Err(format!(

@@ -132,6 +132,14 @@ pub struct LessonState {
     pub step: usize,
     /// For each step, whether its goal was reached.
     pub reached: Vec<bool>,
+    /// A teacher's lesson (not one built into the lab): its file's name, or the address it
+    /// came from.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub file: Option<String>,
+    /// A teacher's lesson: its file's text, read again on restore (the lab that restores
+    /// may not have the file).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub text: Option<String>,
 }
 
 /// The scene: `{"preset": "10k"}` (exactly that preset's shapes) or `{"shapes": [...]}`.
@@ -436,6 +444,8 @@ impl SavedState {
                 name: p.lesson.name.clone(),
                 step: p.step,
                 reached: p.reached.clone(),
+                file: p.lesson.teacher.as_ref().map(|t| t.file.clone()),
+                text: p.lesson.teacher.as_ref().map(|t| t.text.to_string()),
             }),
             predict: Some(PredictSaved {
                 on: lab.predict().on,

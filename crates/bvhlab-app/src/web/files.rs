@@ -22,6 +22,13 @@ pub enum News {
         /// Its bytes, or why they could not be read.
         bytes: Result<Vec<u8>, String>,
     },
+    /// The lesson file named by the address's `lesson-url=` was fetched (or could not be).
+    FetchedLesson {
+        /// The address it was fetched from.
+        url: String,
+        /// Its bytes, or why they could not be fetched.
+        bytes: Result<Vec<u8>, String>,
+    },
     /// The clipboard took the share link (or refused it).
     Copied(Result<(), String>),
     /// A share link was opened in the page already showing the lab (only the address's
@@ -92,6 +99,50 @@ pub fn pick_file(ctx: &egui::Context, accept: &str) -> Result<(), String> {
     Ok(())
 }
 
+/// Fetches the teacher's lesson file at `url` (relative to the page, or another server that
+/// allows it with CORS); it arrives as [`News::FetchedLesson`].
+pub fn fetch_lesson(ctx: &egui::Context, url: String) {
+    let Some(window) = web_sys::window() else {
+        return;
+    };
+    let promise = window.fetch_with_str(&url);
+    let ctx = ctx.clone();
+    wasm_bindgen_futures::spawn_local(async move {
+        let bytes = fetch_bytes(promise, crate::lessons::format::MAX_TEACHER_BYTES).await;
+        deliver(&ctx, News::FetchedLesson { url, bytes });
+    });
+}
+
+/// The body of the response `promise` resolves to, at most `limit` bytes.
+async fn fetch_bytes(promise: js_sys::Promise, limit: usize) -> Result<Vec<u8>, String> {
+    let response: web_sys::Response = JsFuture::from(promise)
+        .await
+        .map_err(|e| {
+            format!(
+                "the server did not answer, or does not allow this page to read it (CORS, or \
+                 the page's policy): {}",
+                describe(&e)
+            )
+        })?
+        .dyn_into()
+        .map_err(|_| "the answer is not a response".to_owned())?;
+    if !response.ok() {
+        return Err(format!(
+            "the server answered {} {}",
+            response.status(),
+            response.status_text()
+        ));
+    }
+    let buffer = JsFuture::from(response.array_buffer().map_err(|e| describe(&e))?)
+        .await
+        .map_err(|e| describe(&e))?;
+    let bytes = js_sys::Uint8Array::new(&buffer).to_vec();
+    if bytes.len() > limit {
+        return Err(crate::persist::too_large(bytes.len() as u64, limit));
+    }
+    Ok(bytes)
+}
+
 /// Reads a file dropped on the page; it arrives as [`News::Opened`].
 pub fn read_dropped(ctx: &egui::Context, file: &egui::DroppedFileHandle, limit: usize) {
     let name = file.path().display().to_string();
@@ -112,11 +163,7 @@ pub fn read_dropped(ctx: &egui::Context, file: &egui::DroppedFileHandle, limit: 
 fn read_file(ctx: egui::Context, file: web_sys::File, limit: usize) {
     let name = file.name();
     if file.size() > limit as f64 {
-        let bytes = Err(format!(
-            "it is {:.1} MiB; the lab reads at most {} MiB",
-            file.size() / f64::from(1 << 20),
-            limit >> 20
-        ));
+        let bytes = Err(crate::persist::too_large(file.size() as u64, limit));
         deliver(&ctx, News::Opened { name, bytes });
         return;
     }

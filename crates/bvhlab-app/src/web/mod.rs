@@ -22,7 +22,7 @@ mod live;
 mod timer;
 
 use files::deliver;
-pub use files::{News, copy_text, pick_file, read_dropped, take_news};
+pub use files::{News, copy_text, fetch_lesson, pick_file, read_dropped, take_news};
 
 thread_local! {
     /// The JSON last written, so the DOM is touched only when something changed.
@@ -49,6 +49,7 @@ pub fn start() {
             say_no_storage(&mut start.app);
         }
         let origins = Origins::new(&start.params.origins);
+        let lesson_url = lesson_to_fetch(&start);
         let inbox: Inbox = Rc::new(RefCell::new(Scripting::new(start.params.debug_panic)));
         let runner = eframe::WebRunner::new();
         let page_canvas = canvas.clone();
@@ -61,6 +62,9 @@ pub fn start() {
                 Box::new(move |cc| {
                     a11y::install(&page_canvas, &cc.egui_ctx);
                     listen_for_links(cc.egui_ctx.clone());
+                    if let Some(url) = lesson_url {
+                        fetch_lesson(&cc.egui_ctx, url);
+                    }
                     crate::embed::browser::listen(
                         inbox.clone(),
                         origins.clone(),
@@ -152,6 +156,15 @@ fn start_state() -> StartState {
         params,
         storage: storage.is_some(),
     }
+}
+
+/// The address's `lesson-url=`, unless the lab starts with that lesson open already (its
+/// saved progress came back: fetching it again would start it over).
+fn lesson_to_fetch(start: &StartState) -> Option<String> {
+    let url = start.params.lesson_url.clone()?;
+    let lesson = start.app.lab().lesson();
+    let open = lesson.and_then(|p| p.lesson.teacher.as_ref());
+    (open.map(|t| t.file.as_str()) != Some(url.as_str())).then_some(url)
 }
 
 /// The browser's `localStorage`, if this frame may use it. A frame sandboxed without
