@@ -8,6 +8,7 @@
 
 use web_time::Instant;
 
+use crate::lessons::writer::{LessonWriter, WriterCommand};
 use crate::model::{Action, Action2d, Dimension, Lab, PlaybackAction};
 use crate::report::Report;
 use crate::ui_state::{Cx, UiState};
@@ -20,6 +21,9 @@ pub struct LabApp {
     pub ui: UiState,
     /// What the lab last reported to the page.
     pub report: Report,
+    /// The lesson a teacher writes, if the writer is open: changed only through
+    /// [`LabApp::write`].
+    writer: Option<LessonWriter>,
     /// Whether the lab's text sizes and colours are in egui's styles ([`crate::theme`]).
     styled: bool,
 }
@@ -37,6 +41,7 @@ impl LabApp {
             lab,
             ui: UiState::new(),
             report: Report::default(),
+            writer: None,
             styled: false,
         }
     }
@@ -77,6 +82,65 @@ impl LabApp {
     /// Why it was refused; the lab is then unchanged.
     pub fn apply(&mut self, action: impl Into<Action>) -> Result<(), String> {
         self.lab.apply(action.into())
+    }
+
+    /// The lesson being written, if the writer is open.
+    pub fn writer(&self) -> Option<&LessonWriter> {
+        self.writer.as_ref()
+    }
+
+    /// Carries out a command of the lesson writer, and the lab actions it asks for.
+    ///
+    /// # Errors
+    /// Why it was refused; the writer (and the lab) are then unchanged.
+    pub fn write(&mut self, command: WriterCommand) -> Result<(), String> {
+        match command {
+            WriterCommand::Start => self.writer = Some(LessonWriter::new(&self.lab)),
+            WriterCommand::EditOpen => {
+                let teacher = self
+                    .lab
+                    .lesson()
+                    .and_then(|p| p.lesson.teacher.clone())
+                    .ok_or("no teacher's lesson is open to edit")?;
+                self.writer = Some(LessonWriter::editing(
+                    &teacher.file,
+                    &teacher.text,
+                    &self.lab,
+                )?);
+            }
+            WriterCommand::Close => self.writer = None,
+            WriterCommand::Do(action) => {
+                let writer = self
+                    .writer
+                    .as_mut()
+                    .ok_or("the lesson writer is not open")?;
+                let mut changed = writer.clone();
+                let asks = changed.apply(action, &self.lab)?;
+                self.lab.apply_all(asks)?;
+                self.writer = Some(changed);
+            }
+        }
+        Ok(())
+    }
+
+    /// Carries out the writer's commands made by the UI in order; a refused one says why in
+    /// the status line. Whether any applied.
+    fn write_from_ui(&mut self, commands: Vec<WriterCommand>) -> bool {
+        let mut changed = false;
+        for command in commands {
+            match self.write(command) {
+                Ok(()) => changed = true,
+                Err(e) => {
+                    let said = crate::persist::capitalized(&e);
+                    let end = if said.ends_with('.') { "" } else { "." };
+                    changed |= self
+                        .lab
+                        .apply(Action::SetMessage(Some(format!("{said}{end}"))))
+                        .is_ok();
+                }
+            }
+        }
+        changed
     }
 
     /// Applies `actions` made by the UI in order. A refused one says why in the status line
@@ -127,13 +191,16 @@ impl LabApp {
         self.apply_from_ui(actions);
 
         let mut actions = Vec::new();
+        let mut writer_asks = Vec::new();
         let mut cx = Cx {
             lab: &self.lab,
             ui: &mut self.ui,
             actions: &mut actions,
+            writer: self.writer.as_ref(),
+            writer_asks: &mut writer_asks,
         };
         layout(&mut cx, ui);
-        if self.apply_from_ui(actions) {
+        if self.apply_from_ui(actions) | self.write_from_ui(writer_asks) {
             ui.ctx().request_repaint();
         }
         if self.lab.playing() || self.lab.busy() || self.lab.animating() {

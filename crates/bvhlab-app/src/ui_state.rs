@@ -73,11 +73,20 @@ pub struct Cx<'a> {
     pub ui: &'a mut UiState,
     /// What the panels and views asked for this frame.
     pub actions: &'a mut Vec<Action>,
+    /// The lesson being written, when the teacher writes one.
+    pub writer: Option<&'a crate::lessons::writer::LessonWriter>,
+    /// What the panels asked of the lesson writer this frame.
+    pub writer_asks: &'a mut Vec<crate::lessons::writer::WriterCommand>,
 }
 
 impl Cx<'_> {
     /// Asks for `action`.
     pub fn act(&mut self, action: impl Into<Action>) {
         self.actions.push(action.into());
+    }
+
+    /// Asks the lesson writer for `command`.
+    pub fn write(&mut self, command: crate::lessons::writer::WriterCommand) {
+        self.writer_asks.push(command);
     }
 }

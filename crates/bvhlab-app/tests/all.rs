@@ -14,6 +14,7 @@ mod heatmap;
 mod layout;
 mod lesson_layout;
 mod lesson_steps;
+mod lesson_writer;
 mod lessons;
 mod native;
 mod persist;

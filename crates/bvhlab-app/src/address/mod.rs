@@ -9,6 +9,7 @@
 //! lesson it names, is there). It uses only the model and the scene format's names.
 
 pub mod panels;
+pub mod words;
 
 use crate::model::Setup;
 use crate::model::presets::Preset;

@@ -9,6 +9,7 @@ pub mod format;
 pub mod goal_text;
 pub mod open;
 pub mod report;
+pub mod writer;
 
 use std::sync::{Arc, OnceLock};
 

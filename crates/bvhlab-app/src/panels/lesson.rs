@@ -84,6 +84,10 @@ pub fn pane(cx: &mut Cx<'_>, ui: &mut egui::Ui, with_question: bool) {
 
 /// The panel.
 pub fn lessons(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
+    if let Some(writer) = cx.writer {
+        super::lesson_writer::writer(cx, ui, writer);
+        return;
+    }
     let Some(progress) = cx.lab.lesson() else {
         choose(cx, ui);
         return;
@@ -92,17 +96,7 @@ pub fn lessons(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
     let step = progress.current();
     let count = lesson.steps.len();
     ui.label(RichText::new(format!("{} {}", lesson.section, lesson.title)).strong());
-    if let Some(teacher) = &lesson.teacher {
-        // Said in words: a student must know this text is not the lab's own.
-        ui.add(
-            egui::Label::new(
-                RichText::new(format!("A teacher's lesson, from {}", teacher.file))
-                    .small()
-                    .italics(),
-            )
-            .wrap(),
-        );
-    }
+    teacher_mark(cx, ui, &lesson);
     ui.label(format!(
         "Step {} of {}: {}",
         progress.step + 1,
@@ -186,6 +180,30 @@ pub fn lessons(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
     }
 }
 
+/// Says that the lesson open is a teacher's (its text is not the lab's own), with a button
+/// that opens it in the lesson writer.
+fn teacher_mark(cx: &mut Cx<'_>, ui: &mut egui::Ui, lesson: &crate::model::Lesson) {
+    let Some(teacher) = &lesson.teacher else {
+        return;
+    };
+    // Said in words: a student must know this text is not the lab's own.
+    ui.add(
+        egui::Label::new(
+            RichText::new(format!("A teacher's lesson, from {}", teacher.file))
+                .small()
+                .italics(),
+        )
+        .wrap(),
+    );
+    if ui
+        .button("Edit this lesson")
+        .on_hover_text("Opens it in the lesson writer")
+        .clicked()
+    {
+        cx.write(crate::lessons::writer::WriterCommand::EditOpen);
+    }
+}
+
 /// The lessons to start, each a button.
 fn choose(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
     ui.heading("bvh-lab");
@@ -215,6 +233,13 @@ fn choose(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
         && let Some(said) = crate::persist::pick_lesson_file(ui.ctx())
     {
         cx.act(said);
+    }
+    if ui
+        .button("Write a lesson")
+        .on_hover_text("Turns what the lab shows into a lesson's steps, checked as you write")
+        .clicked()
+    {
+        cx.write(crate::lessons::writer::WriterCommand::Start);
     }
 }
 

@@ -14,6 +14,7 @@ pub mod export;
 pub mod formula;
 pub mod heat;
 pub mod lesson;
+pub mod lesson_writer;
 pub mod mesh;
 pub mod motion;
 pub mod predict;
