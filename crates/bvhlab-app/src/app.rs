@@ -115,8 +115,14 @@ impl LabApp {
                     .as_mut()
                     .ok_or("the lesson writer is not open")?;
                 let mut changed = writer.clone();
+                let said = say_after(&action);
                 let asks = changed.apply(action, &self.lab)?;
                 self.lab.apply_all(asks)?;
+                // The verdict and the save also go to the status line (and so to screen
+                // readers), wherever the writer's pane is scrolled.
+                if let Some(said) = said.and_then(|say| say(&changed)) {
+                    self.lab.apply(Action::SetMessage(Some(said)))?;
+                }
                 self.writer = Some(changed);
             }
         }
@@ -408,4 +414,30 @@ fn renderer_name(frame: &eframe::Frame) -> String {
             other => format!("{other:?}"),
         },
     )
+}
+
+/// What the status line says after a writer's action, read from the writer after it.
+type Say = fn(&LessonWriter) -> Option<String>;
+
+/// The status line's words after `action`, if it has any: the check's verdict, or the step
+/// saved.
+fn say_after(action: &crate::lessons::writer::WriterAction) -> Option<Say> {
+    use crate::lessons::writer::WriterAction;
+    match action {
+        WriterAction::Check => Some(|w: &LessonWriter| {
+            w.verdict.as_ref().map(|v| match v {
+                Ok(passed) => format!("The step passed its check: {passed} Save it to keep it."),
+                Err(why) => format!("The step is not ready: {why}"),
+            })
+        }),
+        WriterAction::SaveStep => Some(|w: &LessonWriter| {
+            let steps = w.draft.steps.len();
+            Some(format!(
+                "Step saved: the lesson has {steps} step{}. The next step starts from what the \
+                 lab shows.",
+                if steps == 1 { "" } else { "s" }
+            ))
+        }),
+        _ => None,
+    }
 }

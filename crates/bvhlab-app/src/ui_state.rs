@@ -39,6 +39,9 @@ pub struct UiState {
     pub pending_png: Option<crate::panels::export::PendingPng>,
     /// Frame timing.
     pub clock: FrameClock,
+    /// The lesson writer is open but the pane shows the lesson it tries, as a student sees
+    /// it.
+    pub trying_lesson: bool,
     /// The renderer's name ("WebGPU", "WebGL2", "Vulkan", ...), once known.
     pub renderer: Option<String>,
     /// The GPU the lab draws with (none in headless tests): the 3D view draws through it.

@@ -29,7 +29,13 @@ pub fn pane_height(window_height: f32) -> f32 {
 /// lesson's step shows Predict's question below its text (pinned, in view whatever the
 /// text's scroll).
 pub fn pane(cx: &mut Cx<'_>, ui: &mut egui::Ui, with_question: bool) {
-    let height = pane_height(ui.ctx().content_rect().height());
+    let window = ui.ctx().content_rect().height();
+    // The writer has many fields: it takes most of the column (the controls below scroll).
+    let height = if cx.writer.is_some() && !cx.ui.trying_lesson {
+        (window * 0.7).max(pane_height(window))
+    } else {
+        pane_height(window)
+    };
     let (rect, _) = ui.allocate_exact_size(
         egui::vec2(ui.available_width(), height),
         egui::Sense::hover(),
@@ -82,10 +88,29 @@ pub fn pane(cx: &mut Cx<'_>, ui: &mut egui::Ui, with_question: bool) {
     }
 }
 
+/// The lesson writer in the panel's place while it is open (true), unless the teacher tries
+/// a step: then the lesson shows as a student sees it, under a way back to the writer.
+fn writer_shown(cx: &mut Cx<'_>, ui: &mut egui::Ui) -> bool {
+    let Some(writer) = cx.writer else {
+        return false;
+    };
+    if !cx.ui.trying_lesson || cx.lab.lesson().is_none() {
+        super::lesson_writer::writer(cx, ui, writer);
+        return true;
+    }
+    if ui
+        .button("Back to the lesson writer")
+        .on_hover_text("The lesson stays open in the lab")
+        .clicked()
+    {
+        cx.ui.trying_lesson = false;
+    }
+    false
+}
+
 /// The panel.
 pub fn lessons(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
-    if let Some(writer) = cx.writer {
-        super::lesson_writer::writer(cx, ui, writer);
+    if writer_shown(cx, ui) {
         return;
     }
     let Some(progress) = cx.lab.lesson() else {
@@ -201,6 +226,7 @@ fn teacher_mark(cx: &mut Cx<'_>, ui: &mut egui::Ui, lesson: &crate::model::Lesso
         .clicked()
     {
         cx.write(crate::lessons::writer::WriterCommand::EditOpen);
+        cx.ui.trying_lesson = false;
     }
 }
 
@@ -240,6 +266,7 @@ fn choose(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
         .clicked()
     {
         cx.write(crate::lessons::writer::WriterCommand::Start);
+        cx.ui.trying_lesson = false;
     }
 }
 

@@ -81,8 +81,13 @@ fn saved_steps(cx: &mut Cx<'_>, ui: &mut egui::Ui, writer: &LessonWriter) {
                 "with a goal"
             };
             ui.label(format!("{}. {}: {goal}{editing}", i + 1, step.title));
-            if ui.button(format!("Try step {}", i + 1)).clicked() {
+            if ui
+                .button(format!("Try step {}", i + 1))
+                .on_hover_text("Opens the step as a student sees it")
+                .clicked()
+            {
                 act(cx, WriterAction::Try(i));
+                cx.ui.trying_lesson = true;
             }
             if ui.button(format!("Edit step {}", i + 1)).clicked() {
                 act(cx, WriterAction::EditStep(i));
