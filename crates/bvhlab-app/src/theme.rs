@@ -50,6 +50,16 @@ pub fn weak_text(theme: Theme) -> Color32 {
     }
 }
 
+/// The status line's messages (a refused file, a check's verdict) in `theme`: amber, to stand
+/// out from the hints beside them, and AA on the panels (the drawing's selection yellow is
+/// 1.4:1 on the light panel).
+pub fn message_text(theme: Theme) -> Color32 {
+    match theme {
+        Theme::Dark => Color32::from_rgb(255, 210, 80),
+        Theme::Light => Color32::from_rgb(140, 90, 0),
+    }
+}
+
 /// The lab's text sizes and weak text colour, in both themes' styles (the page follows the
 /// system's theme). Idempotent.
 pub fn install(ctx: &egui::Context) {
@@ -102,5 +112,18 @@ mod tests {
         assert!((contrast(Color32::RED, Color32::RED) - 1.0).abs() < 1e-6);
         // #777 on white is WCAG's well-known 4.48:1, just short of AA.
         assert!((contrast(Color32::from_gray(0x77), Color32::WHITE) - 4.48).abs() < 0.01);
+    }
+
+    #[test]
+    fn the_status_lines_message_is_aa_on_the_panels_of_both_themes() {
+        for theme in [Theme::Dark, Theme::Light] {
+            let panel = match theme {
+                Theme::Dark => egui::Visuals::dark(),
+                Theme::Light => egui::Visuals::light(),
+            }
+            .panel_fill;
+            let ratio = contrast(message_text(theme), panel);
+            assert!(ratio >= AA_CONTRAST, "{theme:?}: {ratio:.2}:1");
+        }
     }
 }

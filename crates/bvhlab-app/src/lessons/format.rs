@@ -132,10 +132,10 @@ pub fn read(file: &str, text: &str) -> Result<Lesson, String> {
 /// `file:line: what is wrong`, like the built-in check.
 pub fn read_teacher(file: &str, bytes: &[u8]) -> Result<Lesson, String> {
     if bytes.len() > MAX_TEACHER_BYTES {
+        // Worded as a file picked or dropped is refused before it is read.
         return Err(format!(
-            "{file}:1: the file has {} KiB; a lesson may have at most {} KiB",
-            bytes.len().div_ceil(1024),
-            MAX_TEACHER_BYTES / 1024
+            "{file} could not be read ({})",
+            crate::persist::too_large(bytes.len() as u64, MAX_TEACHER_BYTES)
         ));
     }
     let text = std::str::from_utf8(bytes).map_err(|e| {

@@ -22,10 +22,11 @@ pub fn open_lesson_file(file: &str, bytes: Result<Vec<u8>, String>) -> Vec<Actio
         .and_then(|bytes| read_teacher(file, &bytes));
     match read {
         Ok(lesson) => {
+            let steps = lesson.steps.len();
             let said = format!(
-                "Opened the teacher's lesson \"{}\" from {file} ({} steps).",
+                "Opened the teacher's lesson \"{}\" from {file} ({steps} step{}).",
                 lesson.title,
-                lesson.steps.len()
+                if steps == 1 { "" } else { "s" }
             );
             vec![
                 Action::Lesson(LessonAction::Open {

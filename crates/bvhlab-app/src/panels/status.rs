@@ -7,7 +7,6 @@ use egui::RichText;
 use crate::model::Dimension;
 use crate::model::dimension::thousands;
 use crate::model::lab3d::Lab3d;
-use crate::paint::colors;
 use crate::ui_state::Cx;
 
 /// The status line. `shared`: the controls and "Step through" share one panel as tabs (a
@@ -66,7 +65,7 @@ pub fn status_line(cx: &mut Cx<'_>, ui: &mut egui::Ui, shared: bool) {
 /// A message wrapped to at most `rows` rows (the status line's height), cut with "…" past
 /// them; a screen reader reads it whole (the label's text is the whole message).
 fn message_label(ui: &egui::Ui, message: String, rows: usize) -> egui::Label {
-    let text = RichText::new(message).color(colors::SELECTED);
+    let text = RichText::new(message).color(crate::theme::message_text(ui.ctx().theme()));
     let mut job = std::sync::Arc::unwrap_or_clone(egui::WidgetText::from(text).into_layout_job(
         ui.style(),
         egui::FontSelection::Default,

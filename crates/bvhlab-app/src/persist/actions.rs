@@ -211,21 +211,6 @@ pub fn read_limit(name: &str) -> usize {
     }
 }
 
-/// Why a file of `len` bytes is not read (over `limit`), in MiB or, for small limits (a
-/// lesson's), in KiB.
-pub fn too_large(len: u64, limit: usize) -> String {
-    let (unit, name) = if limit >= 1 << 20 {
-        (f64::from(1 << 20), "MiB")
-    } else {
-        (1024.0, "KiB")
-    };
-    format!(
-        "it is {:.1} {name}; the lab reads at most {} {name}",
-        len as f64 / unit,
-        limit as f64 / unit
-    )
-}
-
 /// A file's bytes, refusing files over [`read_limit`] before reading them.
 #[cfg(not(target_arch = "wasm32"))]
 fn read_limited(path: &std::path::Path) -> Result<Vec<u8>, String> {
@@ -234,7 +219,7 @@ fn read_limited(path: &std::path::Path) -> Result<Vec<u8>, String> {
     let len = file.metadata().map_err(|e| e.to_string())?.len();
     let limit = read_limit(&path.display().to_string());
     if len > limit as u64 {
-        return Err(too_large(len, limit));
+        return Err(super::too_large(len, limit));
     }
     let mut bytes = Vec::new();
     file.take(limit as u64 + 1)

@@ -36,7 +36,7 @@ mod storage;
 #[cfg(feature = "gui")]
 pub use actions::{
     copy_share_link, export_scene, import_scene, pick_lesson_file, poll_imports, read_limit,
-    share_link_text, too_large,
+    share_link_text,
 };
 pub use file::{from_file, to_file};
 pub use link::{LINK_PREFIX, from_fragment, link_fragment};
@@ -145,4 +145,19 @@ pub(crate) fn capitalized(text: &str) -> String {
     chars.next().map_or_else(String::new, |first| {
         first.to_uppercase().chain(chars).collect()
     })
+}
+
+/// Why a file of `len` bytes is not read (over `limit`), in MiB or, for small limits (a
+/// lesson's), in KiB.
+pub fn too_large(len: u64, limit: usize) -> String {
+    let (unit, name) = if limit >= 1 << 20 {
+        (f64::from(1 << 20), "MiB")
+    } else {
+        (1024.0, "KiB")
+    };
+    format!(
+        "it is {:.1} {name}; the lab reads at most {} {name}",
+        len as f64 / unit,
+        limit as f64 / unit
+    )
 }

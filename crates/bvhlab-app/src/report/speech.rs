@@ -29,6 +29,13 @@ impl Report {
         if let Some(predict) = &self.predict {
             out.push(predict.text());
         }
+        // The status line's message (a refused file, the lesson writer's verdict): the status
+        // line is drawn, so a screen reader hears it here (the 3D half says its own above).
+        if let Some(message) = &self.message
+            && !out.contains(message)
+        {
+            out.push(message.clone());
+        }
         out.retain(|s| !s.is_empty());
         out
     }
