@@ -249,3 +249,48 @@ fn the_address_names_a_lesson_file_on_the_web_or_on_this_server_only() {
         );
     }
 }
+
+/// What an LMS kept for a student (the SCORM launch page's `suspend_data`) comes back on
+/// another computer: `go-to-lesson` with `reached` opens the step with those goals reached,
+/// and refuses steps the lesson does not have, changing nothing.
+#[test]
+fn going_to_a_lesson_with_the_steps_reached_before_resumes_the_student() {
+    let mut lab = Lab::default();
+    let lesson = bvhlab_app::lessons::find("slab-test").expect("the slab test lesson");
+    let steps = lesson.steps.len();
+    let json = serde_json::json!({
+        "type": "go-to-lesson", "lesson": "slab-test", "step": 2, "reached": [1]
+    });
+    let (actions, _) = Command::parse(&json.to_string())
+        .and_then(|c| c.actions(&lab, false))
+        .expect("accepted");
+    lab.apply_all(actions).expect("applies");
+    let progress = lab.lesson().expect("open");
+    assert_eq!(progress.step, 1);
+    let mut expected = vec![false; steps];
+    expected[0] = true;
+    assert_eq!(progress.reached, expected);
+    let report = bvhlab_app::lessons::report::LessonReport::of(&lab).expect("open");
+    assert_eq!(report.goals_reached, 1, "{report:?}");
+
+    let before = lab.lesson().cloned();
+    let beyond = serde_json::json!({
+        "type": "go-to-lesson", "lesson": "slab-test", "step": 1, "reached": [steps + 1]
+    });
+    let refused = Command::parse(&beyond.to_string())
+        .and_then(|c| c.actions(&lab, false))
+        .expect_err("a step the lesson lacks");
+    assert!(refused.contains(&format!("1 to {steps}")), "{refused}");
+    assert!(
+        lab.apply(Action::Lesson(LessonAction::MarkReached(vec![steps])))
+            .is_err()
+    );
+    assert_eq!(lab.lesson(), before.as_ref());
+    lab.apply(Action::Lesson(LessonAction::Close))
+        .expect("closes");
+    assert!(
+        lab.apply(Action::Lesson(LessonAction::MarkReached(vec![0])))
+            .is_err(),
+        "no lesson open"
+    );
+}

@@ -84,6 +84,10 @@ pub enum Command {
         /// The step, from 1.
         #[serde(default = "first_step")]
         step: usize,
+        /// Steps (from 1) whose goals the student reached in an earlier session, marked
+        /// reached again: what an LMS kept for the student (the SCORM launch page sends it).
+        #[serde(default)]
+        reached: Vec<usize>,
     },
     /// Opens a teacher's lesson file (its TOML text) at a step, as dropping the file on the
     /// lab does; the same checks and limits.
@@ -198,15 +202,11 @@ impl Command {
             }
             Self::GoToStep { step } => one(PlaybackAction::GoTo(step).into()),
             Self::Play { playing } => one(PlaybackAction::Play(playing).into()),
-            Self::GoToLesson { lesson, step } => {
-                // The teacher's lesson open is found by its name too.
-                let open = lab
-                    .lesson()
-                    .map(|p| p.lesson.clone())
-                    .filter(|l| l.teacher.is_some() && l.name == lesson);
-                let lesson = open.map_or_else(|| crate::lessons::find(&lesson), Ok)?;
-                one(open_at(lesson, step)?)
-            }
+            Self::GoToLesson {
+                lesson,
+                step,
+                reached,
+            } => Ok((go_to_lesson(lab, &lesson, step, &reached)?, None)),
             Self::LoadLesson { text, file, step } => {
                 let lesson = crate::lessons::format::read_teacher(&file, text.as_bytes())?;
                 one(open_at(std::sync::Arc::new(lesson), step)?)
@@ -250,6 +250,35 @@ impl Command {
             }
         }
     }
+}
+
+/// `go-to-lesson`: opens lesson `name` (a built-in one, or the teacher's lesson open by that
+/// name) at `step` (from 1), with the steps `reached` (from 1) marked reached.
+fn go_to_lesson(
+    lab: &Lab,
+    name: &str,
+    step: usize,
+    reached: &[usize],
+) -> Result<Vec<Action>, String> {
+    let open = lab
+        .lesson()
+        .map(|p| p.lesson.clone())
+        .filter(|l| l.teacher.is_some() && l.name == name);
+    let lesson = open.map_or_else(|| crate::lessons::find(name), Ok)?;
+    let steps = lesson.steps.len();
+    let marked = reached
+        .iter()
+        .map(|&s| {
+            s.checked_sub(1)
+                .filter(|&i| i < steps)
+                .ok_or_else(|| format!("reached names step {s}; the lesson has steps 1 to {steps}"))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let mut actions = vec![open_at(lesson, step)?];
+    if !marked.is_empty() {
+        actions.push(Action::Lesson(LessonAction::MarkReached(marked)));
+    }
+    Ok(actions)
 }
 
 /// Opens `lesson` at `step` (from 1), or says which steps it has.

@@ -93,6 +93,10 @@ pub enum LessonAction {
         /// The step.
         step: usize,
     },
+    /// Marks steps of the lesson open as reached (0 is the first), as the student reached
+    /// them in an earlier session: what an LMS keeps for a student (SCORM's
+    /// `suspend_data`) brought back on another computer. Steps it does not have are refused.
+    MarkReached(Vec<usize>),
     /// Closes the lesson; the lab stays as it is.
     Close,
 }
@@ -105,9 +109,13 @@ impl Lab {
 
     /// Carries out a lesson action.
     pub(super) fn apply_lesson(&mut self, action: LessonAction) -> Result<Note, String> {
-        let LessonAction::Open { lesson, step } = action else {
-            self.lesson = None;
-            return Ok(Note::Clear);
+        let (lesson, step) = match action {
+            LessonAction::Open { lesson, step } => (lesson, step),
+            LessonAction::MarkReached(steps) => return self.mark_reached(&steps),
+            LessonAction::Close => {
+                self.lesson = None;
+                return Ok(Note::Clear);
+            }
         };
         let Some(shown) = lesson.steps.get(step) else {
             return Err(format!(
@@ -160,6 +168,26 @@ impl Lab {
             self.three.start_afresh();
         }
         Vec::new()
+    }
+
+    /// Marks `steps` of the lesson open reached ([`LessonAction::MarkReached`]).
+    fn mark_reached(&mut self, steps: &[usize]) -> Result<Note, String> {
+        let open = self
+            .lesson
+            .as_mut()
+            .ok_or("no lesson is open: there is nothing to mark reached")?;
+        let count = open.reached.len();
+        if let Some(&beyond) = steps.iter().find(|&&s| s >= count) {
+            return Err(format!(
+                "the lesson \"{}\" has steps 1 to {count}; step {} cannot be marked reached",
+                open.lesson.name,
+                beyond + 1
+            ));
+        }
+        for &step in steps {
+            open.reached[step] = true;
+        }
+        Ok(Note::Clear)
     }
 
     /// Marks the step shown's goal reached once all its comparisons hold (after every
