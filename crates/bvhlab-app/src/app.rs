@@ -136,17 +136,20 @@ impl LabApp {
         for command in commands {
             match self.write(command) {
                 Ok(()) => changed = true,
-                Err(e) => {
-                    let said = crate::persist::capitalized(&e);
-                    let end = if said.ends_with('.') { "" } else { "." };
-                    changed |= self
-                        .lab
-                        .apply(Action::SetMessage(Some(format!("{said}{end}"))))
-                        .is_ok();
-                }
+                Err(e) => changed |= self.say_refused(&e),
             }
         }
         changed
+    }
+
+    /// Says in the status line why something the UI asked was refused, as a sentence;
+    /// whether the lab took the message.
+    fn say_refused(&mut self, why: &str) -> bool {
+        let said = crate::persist::capitalized(why);
+        let end = if said.ends_with('.') { "" } else { "." };
+        self.lab
+            .apply(Action::SetMessage(Some(format!("{said}{end}"))))
+            .is_ok()
     }
 
     /// Applies `actions` made by the UI in order. A refused one says why in the status line
@@ -156,14 +159,7 @@ impl LabApp {
         for action in actions {
             match self.lab.apply(action) {
                 Ok(()) => changed = true,
-                Err(e) => {
-                    let said = crate::persist::capitalized(&e);
-                    let end = if said.ends_with('.') { "" } else { "." };
-                    changed |= self
-                        .lab
-                        .apply(Action::SetMessage(Some(format!("{said}{end}"))))
-                        .is_ok();
-                }
+                Err(e) => changed |= self.say_refused(&e),
             }
         }
         changed
