@@ -29,8 +29,10 @@ export class BvhLab {
     const { origin = new URL(frame.src, location.href).origin, fitHeight = false } =
       typeof options === 'string' ? { origin: options } : options;
     this.frame = frame;
-    // Sandboxed without allow-same-origin: the lab's messages come from the origin "null".
-    const opaque = frame.sandbox.length > 0 && !frame.sandbox.contains('allow-same-origin');
+    // Sandboxed without allow-same-origin, or inside a page that is (a sandbox holds for the
+    // frames within): the lab's messages come from the origin "null".
+    const opaque = (frame.sandbox.length > 0 && !frame.sandbox.contains('allow-same-origin')) ||
+      self.origin === 'null';
     this.origin = opaque ? 'null' : origin;
     this.target = opaque ? '*' : origin;
     this.next = 1;
@@ -93,6 +95,35 @@ export class BvhLab {
   /// while Predict is on.
   onProgress(listener) { this.listeners.progress.push(listener); }
 
+  /// Calls `listener(statement)` with each progress event as an xAPI statement (see
+  /// xapiStatements below), for a course page or an LMS plugin that records xAPI: a step
+  /// opened is "experienced", a goal reached "completed" (once per step and page), a change
+  /// of Predict's score "answered". `options`: `actor` (the learner, as the LRS knows them:
+  /// `{mbox: 'mailto:...'}` or `{account: {homePage, name}}`; statements need one, so without
+  /// it the listener must add it) and `activity`, the IRI the statements' activities start
+  /// with (by default the lab's address without its query).
+  onStatement(listener, options = {}) {
+    const activity = options.activity ?? new URL(this.frame.src, location.href).href.split(/[?#]/)[0];
+    const completed = new Set();
+    const scores = new Map();
+    this.onProgress((p) => {
+      for (const statement of xapiStatements(p, { ...options, activity })) {
+        const verb = statement.verb.id;
+        const key = statement.object.id;
+        if (verb === XAPI_VERBS.completed.id) {
+          if (completed.has(key)) continue;
+          completed.add(key);
+        }
+        if (verb === XAPI_VERBS.answered.id) {
+          const score = JSON.stringify(statement.result.score);
+          if (scores.get(key) === score) continue;
+          scores.set(key, score);
+        }
+        listener(statement);
+      }
+    });
+  }
+
   /// Calls `listener({height})` with the height in CSS pixels the lab would like its frame
   /// to have: when it starts, and when the student shows or hides its panels (720 with the
   /// panels beside the view, 600 for the view and the tree diagram, 480 for the view alone).
@@ -102,8 +133,11 @@ export class BvhLab {
     if (this.height) listener({ height: this.height });
   }
 
-  /// Opens lesson `name` at `step` (1 is its first).
-  goToLesson(lesson, step = 1) { return this.send({ type: 'go-to-lesson', lesson, step }); }
+  /// Opens lesson `name` at `step` (1 is its first). `reached`: steps (from 1) whose goals
+  /// the student reached in an earlier session (what an LMS kept), marked reached again.
+  goToLesson(lesson, step = 1, reached = []) {
+    return this.send({ type: 'go-to-lesson', lesson, step, ...(reached.length ? { reached } : {}) });
+  }
   /// Opens a teacher's lesson from the text of its .toml file (the format of the lab's own
   /// lessons, crates/bvhlab-app/lessons/README.md) at `step`; rejects with `file:line: why`
   /// when the file is wrong, changing nothing.
@@ -132,4 +166,77 @@ export class BvhLab {
   goToStep(step) { return this.send({ type: 'go-to-step', step }); }
   play(playing = true) { return this.send({ type: 'play', playing }); }
   exportScene() { return this.send({ type: 'export-scene' }); }
+}
+
+/// The xAPI verbs the lab's statements use (ADL's vocabulary).
+export const XAPI_VERBS = {
+  experienced: { id: 'http://adlnet.gov/expapi/verbs/experienced', display: { 'en-US': 'experienced' } },
+  completed: { id: 'http://adlnet.gov/expapi/verbs/completed', display: { 'en-US': 'completed' } },
+  answered: { id: 'http://adlnet.gov/expapi/verbs/answered', display: { 'en-US': 'answered' } },
+};
+
+/// A progress event (onProgress) as xAPI 1.0.3 statements: for a lesson step, "completed"
+/// when its goal is reached (result: success, completion, and the lesson's goals reached as
+/// the score, raw of max) or "experienced" when it is only open; for Predict, "answered" with
+/// the exercise's score (raw: right first time plus half of right after a hint, max: every
+/// prediction settled; success when none had to be shown). Activities are named
+/// `ACTIVITY/lessons/NAME/steps/N` (its parent `ACTIVITY/lessons/NAME`) and
+/// `ACTIVITY/predict/EXERCISE`. `options`: `actor`, `activity` (an IRI), `timestamp` (ISO
+/// 8601; now by default).
+export function xapiStatements(progress, options = {}) {
+  const { actor, activity = 'urn:bvh-lab', timestamp = new Date().toISOString() } = options;
+  const base = { ...(actor ? { actor } : {}), timestamp };
+  const statements = [];
+  if (progress.lesson) {
+    const lesson = `${activity}/lessons/${encodeURIComponent(progress.lesson)}`;
+    const done = Boolean(progress.goal_reached);
+    statements.push({
+      ...base,
+      verb: done ? XAPI_VERBS.completed : XAPI_VERBS.experienced,
+      object: {
+        objectType: 'Activity',
+        id: `${lesson}/steps/${progress.step}`,
+        definition: {
+          type: 'http://adlnet.gov/expapi/activities/lesson',
+          name: { 'en-US': `${progress.lesson}, step ${progress.step} of ${progress.steps}` },
+        },
+      },
+      ...(done ? {
+        result: {
+          success: true,
+          completion: true,
+          score: {
+            raw: progress.goals_reached,
+            min: 0,
+            max: progress.goals,
+            scaled: progress.goals ? progress.goals_reached / progress.goals : 1,
+          },
+        },
+      } : {}),
+      context: { contextActivities: { parent: [{ objectType: 'Activity', id: lesson }] } },
+    });
+  }
+  if (progress.exercise && progress.score) {
+    const { first_time: first = 0, after_hint: hint = 0, shown = 0 } = progress.score;
+    const settled = first + hint + shown;
+    if (settled > 0) {
+      statements.push({
+        ...base,
+        verb: XAPI_VERBS.answered,
+        object: {
+          objectType: 'Activity',
+          id: `${activity}/predict/${encodeURIComponent(progress.exercise)}`,
+          definition: {
+            type: 'http://adlnet.gov/expapi/activities/interaction',
+            name: { 'en-US': `Predict: ${progress.exercise}` },
+          },
+        },
+        result: {
+          success: shown === 0,
+          score: { raw: first + hint / 2, min: 0, max: settled, scaled: (first + hint / 2) / settled },
+        },
+      });
+    }
+  }
+  return statements;
 }

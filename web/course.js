@@ -6,6 +6,12 @@ import { BvhLab } from './bvhlab-embed.js';
 const lab = new BvhLab(document.getElementById('lab'));
 window.lab = lab;
 window.progress = [];
+// The same progress as xAPI statements, as an LMS plugin that speaks xAPI would record them
+// (here kept for the browser test; a real page would send them to its LRS).
+window.statements = [];
+lab.onStatement((statement) => window.statements.push(statement), {
+  actor: { objectType: 'Agent', account: { homePage: location.origin, name: 'example-student' } },
+});
 const list = document.getElementById('progress');
 const status = document.getElementById('course-status');
 

@@ -284,6 +284,18 @@ async function courseProgress(context, summary) {
   check(next.lesson?.step === 2 && !next.lesson.goal_reached && next.lesson.goals_reached === 1,
     `the page moves the lab to step 2: ${JSON.stringify(next.lesson)}`);
   await page.waitForFunction(() => window.progress.some((p) => p.step === 2), null, { timeout: 10_000 });
+  // The same progress as xAPI statements (bvhlab-embed.js onStatement).
+  const statements = await page.evaluate(() => window.statements);
+  const verbs = statements.map((s) => `${s.verb.display['en-US']} ${s.object.id.split('/lessons/')[1]}`);
+  const completed = statements.filter((s) => s.verb.id === 'http://adlnet.gov/expapi/verbs/completed');
+  check(completed.length === 1 && completed[0].object.id.endsWith('/index.html/lessons/slab-test/steps/1') &&
+    completed[0].result.success === true && completed[0].result.completion === true &&
+    completed[0].result.score.raw === 1 && completed[0].result.score.max === 3 &&
+    completed[0].actor?.account?.name === 'example-student' && !Number.isNaN(Date.parse(completed[0].timestamp)) &&
+    completed[0].context.contextActivities.parent[0].id.endsWith('/lessons/slab-test'),
+  `one xAPI statement completes step 1, with its score and actor: ${JSON.stringify(verbs)} ${JSON.stringify(completed)}`);
+  check(verbs.includes('experienced slab-test/steps/1') && verbs.at(-1) === 'experienced slab-test/steps/2',
+    `the steps opened are "experienced": ${JSON.stringify(verbs)}`);
   const refused = await page.evaluate(() => window.lab.goToLesson('slab-tset', 1).then(() => null, (e) => e.message));
   check(refused?.includes('slab-test'), `an unknown lesson is refused with the names: ${refused}`);
   const listed = await page.$$eval('#progress li', (items) => items.map((li) => li.textContent));
