@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # bvh-lab's browser end-to-end test, from scratch on a fresh machine: installs what it needs
 # (Node.js and Debian's Chromium with software Vulkan/GL when missing and we are root, then the
-# pinned playwright-core and pngjs with npm ci), builds the page (web/build.sh), serves it on a
-# free local port (web/server.mjs), runs the tests of tests/e2e/ against it (lab, view3d, embed,
-# hosting, a11y), and stops the server.
+# pinned playwright-core, pngjs, axe-core and scorm-again with npm ci; zip and unzip), builds
+# the page (web/build.sh), serves it on a free local port (web/server.mjs), runs the tests of
+# tests/e2e/ against it (lab, view3d, embed, lesson, teacher, hosting, a11y; then scorm, which packages
+# the lab and serves the packages itself), and stops the server.
 # The exit code is the test's. Screenshots and the server's log go to target/e2e/.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -23,6 +24,10 @@ if ! command -v node >/dev/null; then
   apt_install nodejs npm
 elif ! command -v npm >/dev/null; then
   apt_install npm
+fi
+# zip and unzip: web/package.sh makes the SCORM packages with zip; the test unpacks them.
+if ! command -v zip >/dev/null || ! command -v unzip >/dev/null; then
+  apt_install zip unzip
 fi
 if [ ! -x "${CHROMIUM:-/usr/bin/chromium}" ]; then
   apt_install chromium libegl1 libgl1-mesa-dri libegl-mesa0 mesa-vulkan-drivers libvulkan1
@@ -60,5 +65,8 @@ node tests/e2e/lab.test.mjs "$url"
 node tests/e2e/view3d.test.mjs "$url"
 node tests/e2e/embed.test.mjs "$url"
 node tests/e2e/lesson.test.mjs "$url"
+node tests/e2e/teacher.test.mjs "$url"
 node tests/e2e/hosting.test.mjs "$url"
 node tests/e2e/a11y.test.mjs "$url"
+# The SCORM packages (web/package.sh) in an LMS page with scorm-again; it serves them itself.
+node tests/e2e/scorm.test.mjs
