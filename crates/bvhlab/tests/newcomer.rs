@@ -9,11 +9,11 @@ use bvhlab::{Aabb, BspTree, Bvh, Grid, KdTree, Mesh, Orthtree, Sphere};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
-fn rng(seed: u64) -> ChaCha8Rng {
+pub(crate) fn rng(seed: u64) -> ChaCha8Rng {
     ChaCha8Rng::seed_from_u64(seed)
 }
 
-fn random_vec3(rng: &mut ChaCha8Rng, extent: f32) -> Vec3 {
+pub(crate) fn random_vec3(rng: &mut ChaCha8Rng, extent: f32) -> Vec3 {
     Vec3::new(
         rng.random_range(-extent..extent),
         rng.random_range(-extent..extent),
@@ -36,7 +36,7 @@ fn random_triangles(seed: u64, n: usize) -> Vec<Triangle3> {
 }
 
 /// Rays from outside the scene aimed at random points inside it.
-fn random_rays(seed: u64, n: usize) -> Vec<Ray3> {
+pub(crate) fn random_rays(seed: u64, n: usize) -> Vec<Ray3> {
     let mut rng = rng(seed);
     (0..n)
         .map(|_| {
@@ -69,10 +69,10 @@ fn use_bvhlab_bvh4_compiles_from_the_crate_root_and_the_prelude() {
 /// A ball as a custom primitive; `honest` picks whether its vertices enclose it (the corners
 /// of its box) or not (its centre alone: the mistake the newcomer made).
 #[derive(Clone, Copy, Debug, PartialEq)]
-struct Ball {
-    center: Vec3,
-    radius: f32,
-    honest: bool,
+pub(crate) struct Ball {
+    pub(crate) center: Vec3,
+    pub(crate) radius: f32,
+    pub(crate) honest: bool,
 }
 
 impl Primitive for Ball {

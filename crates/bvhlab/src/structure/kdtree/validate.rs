@@ -5,6 +5,7 @@ use super::KdTree;
 use super::build::DEPTH_LIMIT;
 use super::layout::KdNode;
 use crate::structure::ValidationError;
+use crate::structure::bvh::{SLACK, TINY};
 use crate::structure::plane_tree::validate::{
     check_coverage, check_layout, check_leaf_ranges, check_nesting,
 };
@@ -17,9 +18,10 @@ use crate::{Primitive, Vector};
 pub const EXACT_COVERAGE_LIMIT: usize = 100_000;
 
 /// The cell's interior, approximated from inside by moving each face that is a split plane
-/// one `f32` step inwards; `None` when the cell is too thin to have one. Faces on the root
-/// cell's boundary stay: no neighbouring cell holds the points on them, so the cell must.
-fn interior<V: Vector>(cell: &Aabb<V>, root: &Aabb<V>) -> Option<Aabb<V>> {
+/// inwards by `rounding` (at least one `f32` step); `None` when the cell is too thin to have
+/// one. Faces on the root cell's boundary stay: no neighbouring cell holds the points on
+/// them, so the cell must.
+fn interior<V: Vector>(cell: &Aabb<V>, root: &Aabb<V>, rounding: f32) -> Option<Aabb<V>> {
     let mut inner = *cell;
     for axis in 0..V::DIM {
         let (min, max) = (cell.min.coord(axis), cell.max.coord(axis));
@@ -27,12 +29,12 @@ fn interior<V: Vector>(cell: &Aabb<V>, root: &Aabb<V>) -> Option<Aabb<V>> {
             if min == root.min.coord(axis) {
                 min
             } else {
-                min.next_up()
+                (min + rounding).max(min.next_up())
             },
             if max == root.max.coord(axis) {
                 max
             } else {
-                max.next_down()
+                (max - rounding).min(max.next_down())
             },
         );
         if lo > hi {
@@ -125,9 +127,24 @@ pub fn validate<P: Primitive>(tree: &KdTree<P>) -> Result<(), ValidationError> {
     }
     let exact = tree.prims().len() <= EXACT_COVERAGE_LIMIT;
     check_coverage(tree, &facts, |_, children, prim, facts| {
+        // The rounding the primitive contract allows the primitive's own tests: a few units
+        // in the last place of its coordinates ([`SLACK`] of the largest, plus [`TINY`]). A
+        // ball whose box starts on a plane may touch the cell beyond it by its exact test
+        // (its `center - radius` rounded), and the builder rightly sends it to one side only.
+        let bounds = prim.bounds();
+        let magnitude = (0..P::Point::DIM)
+            .map(|axis| {
+                bounds
+                    .min
+                    .coord(axis)
+                    .abs()
+                    .max(bounds.max.coord(axis).abs())
+            })
+            .fold(0.0, f32::max);
+        let rounding = magnitude * SLACK + TINY;
         children.map(|child| {
             exact
-                && interior(&facts[child as usize].bound, &tree.root_cell())
+                && interior(&facts[child as usize].bound, &tree.root_cell(), rounding)
                     .is_some_and(|inside| prim.intersects_aabb(&inside))
         })
     })

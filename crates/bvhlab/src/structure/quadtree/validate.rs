@@ -2,8 +2,10 @@
 
 use super::build::{Split, child_mask};
 use super::layout::{MAX_DEPTH, Orthtree, child_box_at, child_count, split_point};
+use crate::structure::bvh::{SLACK, TINY};
 use crate::structure::stats::sah_cost_boxes;
 use crate::structure::{NodeId, Stats, ValidationError};
+use crate::volume::Aabb;
 use crate::{BoundingVolume, Primitive, Vector};
 
 /// Up to this many (leaf, primitive) pairs, validation also tests every primitive against
@@ -117,12 +119,16 @@ impl<P: Primitive> Orthtree<P> {
                 ));
             }
             ref_used[range.clone()].fill(true);
+            // By its box, not its exact test: the build (child_mask) may store a primitive
+            // in a cell holding one of its vertices, which the primitive itself need not
+            // touch (a ball's vertices are its box's corners); the list is then checked
+            // against that rule below.
             if let Some(&i) = self.refs[range.clone()]
                 .iter()
-                .find(|&&i| !self.prims[i as usize].intersects_aabb(&bounds))
+                .find(|&&i| !self.prims[i as usize].bounds().overlaps(&bounds))
             {
                 return fail(format!(
-                    "leaf {node} lists primitive {i}, which does not touch it"
+                    "leaf {node} lists primitive {i}, whose box misses it"
                 ));
             }
             if self.refs[range.clone()] != expected[..] {
@@ -171,7 +177,10 @@ impl<P: Primitive> Orthtree<P> {
         Ok(())
     }
 
-    /// On moderate inputs: every primitive that shares a point with a leaf is listed there.
+    /// On moderate inputs: every primitive that shares a point with a leaf is listed there,
+    /// beyond the rounding the primitive contract allows its own tests (a few units in the
+    /// last place of its coordinates: a ball whose box ends just short of a cell may touch
+    /// it by its exact test).
     fn check_every_leaf(&self, placed: &[u32]) -> Result<(), ValidationError> {
         let cells = self.cells();
         let leaves = cells.iter().filter(|c| c.prims.is_some()).count();
@@ -181,7 +190,8 @@ impl<P: Primitive> Orthtree<P> {
         for cell in cells.iter().filter(|c| c.prims.is_some()) {
             let listed = cell.prims.unwrap_or_default();
             for &i in placed {
-                if self.prims[i as usize].intersects_aabb(&cell.bounds)
+                let prim = &self.prims[i as usize];
+                if within_rounding(&cell.bounds, prim).is_some_and(|b| prim.intersects_aabb(&b))
                     && listed.binary_search(&i).is_err()
                 {
                     return fail(format!(
@@ -193,4 +203,33 @@ impl<P: Primitive> Orthtree<P> {
         }
         Ok(())
     }
+}
+
+/// `cell` shrunk on every side by the rounding the primitive contract allows `prim`'s tests
+/// ([`SLACK`] of its largest coordinate, plus [`TINY`]); `None` when nothing is left.
+fn within_rounding<P: Primitive>(cell: &Aabb<P::Point>, prim: &P) -> Option<Aabb<P::Point>> {
+    let bounds = prim.bounds();
+    let magnitude = (0..P::Point::DIM)
+        .map(|axis| {
+            bounds
+                .min
+                .coord(axis)
+                .abs()
+                .max(bounds.max.coord(axis).abs())
+        })
+        .fold(0.0, f32::max);
+    let rounding = magnitude * SLACK + TINY;
+    let mut inner = *cell;
+    for axis in 0..P::Point::DIM {
+        let (lo, hi) = (
+            cell.min.coord(axis) + rounding,
+            cell.max.coord(axis) - rounding,
+        );
+        if lo > hi {
+            return None;
+        }
+        inner.min.set_coord(axis, lo);
+        inner.max.set_coord(axis, hi);
+    }
+    Some(inner)
 }
