@@ -214,3 +214,22 @@ queries_by_observed_walks!(KdTree);
 queries_by_observed_walks!(BspTree);
 queries_by_observed_walks!(Grid);
 queries_by_observed_walks!(Orthtree);
+
+/// The rounding the [`Primitive`](crate::Primitive) contract allows a primitive's own tests:
+/// a few units in the last place of its coordinates, [`SLACK`](bvh::SLACK) of the largest
+/// plus [`TINY`](bvh::TINY). Validation does not ask a structure to store a primitive where
+/// it reaches only by that much.
+pub(crate) fn contract_rounding<P: Primitive>(prim: &P) -> f32 {
+    use crate::Vector as _;
+    let bounds = prim.bounds();
+    let magnitude = (0..P::Point::DIM)
+        .map(|axis| {
+            bounds
+                .min
+                .coord(axis)
+                .abs()
+                .max(bounds.max.coord(axis).abs())
+        })
+        .fold(0.0, f32::max);
+    magnitude * bvh::SLACK + bvh::TINY
+}

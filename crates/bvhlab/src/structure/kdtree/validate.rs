@@ -5,7 +5,7 @@ use super::KdTree;
 use super::build::DEPTH_LIMIT;
 use super::layout::KdNode;
 use crate::structure::ValidationError;
-use crate::structure::bvh::{SLACK, TINY};
+use crate::structure::contract_rounding;
 use crate::structure::plane_tree::validate::{
     check_coverage, check_layout, check_leaf_ranges, check_nesting,
 };
@@ -128,20 +128,10 @@ pub fn validate<P: Primitive>(tree: &KdTree<P>) -> Result<(), ValidationError> {
     let exact = tree.prims().len() <= EXACT_COVERAGE_LIMIT;
     check_coverage(tree, &facts, |_, children, prim, facts| {
         // The rounding the primitive contract allows the primitive's own tests: a few units
-        // in the last place of its coordinates ([`SLACK`] of the largest, plus [`TINY`]). A
+        // in the last place of its coordinates ([`contract_rounding`]). A
         // ball whose box starts on a plane may touch the cell beyond it by its exact test
         // (its `center - radius` rounded), and the builder rightly sends it to one side only.
-        let bounds = prim.bounds();
-        let magnitude = (0..P::Point::DIM)
-            .map(|axis| {
-                bounds
-                    .min
-                    .coord(axis)
-                    .abs()
-                    .max(bounds.max.coord(axis).abs())
-            })
-            .fold(0.0, f32::max);
-        let rounding = magnitude * SLACK + TINY;
+        let rounding = contract_rounding(prim);
         children.map(|child| {
             exact
                 && interior(&facts[child as usize].bound, &tree.root_cell(), rounding)

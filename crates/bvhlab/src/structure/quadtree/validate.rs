@@ -2,9 +2,8 @@
 
 use super::build::{Split, child_mask};
 use super::layout::{MAX_DEPTH, Orthtree, child_box_at, child_count, split_point};
-use crate::structure::bvh::{SLACK, TINY};
 use crate::structure::stats::sah_cost_boxes;
-use crate::structure::{NodeId, Stats, ValidationError};
+use crate::structure::{NodeId, Stats, ValidationError, contract_rounding};
 use crate::volume::Aabb;
 use crate::{BoundingVolume, Primitive, Vector};
 
@@ -206,19 +205,9 @@ impl<P: Primitive> Orthtree<P> {
 }
 
 /// `cell` shrunk on every side by the rounding the primitive contract allows `prim`'s tests
-/// ([`SLACK`] of its largest coordinate, plus [`TINY`]); `None` when nothing is left.
+/// ([`contract_rounding`]); `None` when nothing is left.
 fn within_rounding<P: Primitive>(cell: &Aabb<P::Point>, prim: &P) -> Option<Aabb<P::Point>> {
-    let bounds = prim.bounds();
-    let magnitude = (0..P::Point::DIM)
-        .map(|axis| {
-            bounds
-                .min
-                .coord(axis)
-                .abs()
-                .max(bounds.max.coord(axis).abs())
-        })
-        .fold(0.0, f32::max);
-    let rounding = magnitude * SLACK + TINY;
+    let rounding = contract_rounding(prim);
     let mut inner = *cell;
     for axis in 0..P::Point::DIM {
         let (lo, hi) = (
