@@ -431,7 +431,7 @@ fn say_after(action: &crate::lessons::writer::WriterAction) -> Option<Say> {
             Some(format!(
                 "Step saved: the lesson has {steps} step{}. The next step starts from what the \
                  lab shows.",
-                if steps == 1 { "" } else { "s" }
+                crate::model::dimension::plural(steps)
             ))
         }),
         _ => None,

@@ -26,7 +26,7 @@ pub fn open_lesson_file(file: &str, bytes: Result<Vec<u8>, String>) -> Vec<Actio
             let said = format!(
                 "Opened the teacher's lesson \"{}\" from {file} ({steps} step{}).",
                 lesson.title,
-                if steps == 1 { "" } else { "s" }
+                crate::model::dimension::plural(steps)
             );
             vec![
                 Action::Lesson(LessonAction::Open {

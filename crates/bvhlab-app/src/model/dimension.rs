@@ -50,6 +50,11 @@ impl LabPrimitive for Triangle3 {
     const NAME: &'static str = "triangles";
 }
 
+/// The plural ending for `n` things: `""` for one, `"s"` otherwise.
+pub fn plural(n: usize) -> &'static str {
+    if n == 1 { "" } else { "s" }
+}
+
 /// `1234567` as `1,234,567`.
 pub fn thousands(n: usize) -> String {
     let digits = n.to_string();

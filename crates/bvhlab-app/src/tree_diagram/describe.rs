@@ -4,6 +4,7 @@ use std::fmt::Write as _;
 
 use bvhlab::{NodeOutline, NodeShape, Vector};
 
+use crate::model::dimension::plural;
 use crate::model::outcome::NodeMark;
 
 /// Several lines about `node`: id and depth, leaf or inner, its shape, and what the query
@@ -59,10 +60,6 @@ fn shape_text<V: Vector>(shape: &NodeShape<V>) -> String {
             )
         }
     }
-}
-
-fn plural(n: usize) -> &'static str {
-    if n == 1 { "" } else { "s" }
 }
 
 #[cfg(test)]
