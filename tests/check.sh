@@ -94,8 +94,14 @@ cargo clippy -p bvhlab-app --no-default-features -- -D warnings
 step "docs"
 # The core as most users build it, without its optional features: no link may lead to them.
 RUSTDOCFLAGS="-D warnings" cargo doc -p bvhlab --no-deps
-# Then everything, the core with its features (what target/doc keeps).
+# Then everything, the core with its features.
 RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps "${features[@]}"
+# Last, the core as docs.rs builds it (what target/doc keeps): every feature, each item marked
+# with the feature it needs (rustdoc's doc_cfg, behind the `docsrs` cfg; RUSTC_BOOTSTRAP lets
+# stable rustdoc use it, as docs.rs's nightly does). A newcomer once missed `saved` and
+# `build_parallel` in the default docs (issue 33): they must be there, and marked.
+RUSTC_BOOTSTRAP=1 RUSTDOCFLAGS="--cfg docsrs -D warnings" cargo doc -p bvhlab --no-deps --all-features
+bash tests/docs_features.sh target/doc/bvhlab
 
 step "the web page (the lab and the core for wasm32)"
 if ! wait "$background"; then

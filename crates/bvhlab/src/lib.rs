@@ -265,6 +265,24 @@
 //!   has one file name: `layout`, `build`, `ray`, `nearest`, `range`, `collide`, `validate`.
 //! - [`mesh`] (OBJ files), [`ray`], [`vector`], [`math`], [`error`]; with the `serde`
 //!   feature, `saved` (saving and loading built structures).
+//!
+//! ## Features
+//!
+//! Both are off by default, so a WebAssembly build or a small program pulls in neither.
+//!
+//! | feature | what it adds |
+//! | --- | --- |
+//! | `serde` | `bvhlab::saved`: saving a built structure as bytes and loading it back; serde derives on the layouts (postcard is the byte format) |
+//! | `parallel` | the batch queries (`ray_first_hits`, `ray_any_hits`, `closest_points`) on every core, and `build_parallel` for the AABB tree and [`Bvh4`] (the same tree as `build`); rayon |
+//!
+//! These docs as docs.rs builds them show every feature's items, each marked with the feature
+//! it needs; `cargo doc` alone leaves them out. To read them here:
+//! `RUSTC_BOOTSTRAP=1 RUSTDOCFLAGS="--cfg docsrs" cargo doc -p bvhlab --all-features --open`
+//! (the `docsrs` cfg turns on rustdoc's `doc_cfg`, which stable rustdoc keeps behind
+//! `RUSTC_BOOTSTRAP`, as docs.rs's nightly does not need to).
+
+// docs.rs (and the command above) mark each item with the features it needs.
+#![cfg_attr(docsrs, feature(doc_cfg))]
 
 pub use glam;
 
