@@ -1,8 +1,8 @@
 //! A primitive of your own: balls (solid spheres) that implement [`Primitive`], so that every
 //! structure indexes them and answers ray, nearest-point, range and collision queries over
 //! them. The trait's documentation (`crates/bvhlab/src/primitive/mod.rs`) states the contract these
-//! methods keep; [`check_enclosed_by_vertices`] checks its first clause, the one a ball
-//! most easily breaks. The ray test is the quadratic of Shirley and Marschner's
+//! methods keep; [`check_enclosed_by_vertices`] and [`check_bounds_hold`] check the two
+//! clauses a ball most easily breaks (vertices that enclose it, bounds that hold it). The ray test is the quadratic of Shirley and Marschner's
 //! *Fundamentals of Computer Graphics*, §4.4.1.
 //!
 //! Run: `cargo run -p bvhlab --example custom_primitive`.
@@ -13,7 +13,7 @@ use std::f32::consts::PI;
 
 use bvhlab::glam::{BVec3, Vec3};
 use bvhlab::prelude::*;
-use bvhlab::primitive::check_enclosed_by_vertices;
+use bvhlab::primitive::{check_bounds_hold, check_enclosed_by_vertices};
 use bvhlab::structure::bvh::SphereTree;
 use bvhlab::{Aabb, Bvh4, RangeShape, Ray};
 
@@ -117,10 +117,11 @@ impl Primitive for Ball {
 
 fn main() -> Result<(), Box<dyn Error>> {
     let balls = ball_grid(10);
-    // The cheap part of the contract, checked before building (every BVH's `validate()`
-    // checks it too).
+    // The cheap part of the contract, checked before building (every structure's
+    // `validate()` checks it too).
     for ball in &balls {
         check_enclosed_by_vertices(ball)?;
+        check_bounds_hold(ball)?;
     }
 
     // A sphere tree (its nodes fitted to the vertices) and the 4-wide box tree: both take

@@ -117,14 +117,16 @@
 //! - **A primitive of your own** (`examples/custom_primitive.rs`: balls, their texture
 //!   coordinates at hits, a sphere tree and [`Bvh4`] over them). Implement [`Primitive`],
 //!   keeping the contract written on it;
-//!   [`check_enclosed_by_vertices`](primitive::check_enclosed_by_vertices) checks the clause
-//!   most easily broken (the vertices must enclose the whole primitive), and every BVH's
-//!   `validate()` runs it. Condensed:
+//!   [`check_enclosed_by_vertices`](primitive::check_enclosed_by_vertices) and
+//!   [`check_bounds_hold`](primitive::check_bounds_hold) check the clauses most easily
+//!   broken (the vertices must enclose the whole primitive, its bounds must hold it), and
+//!   every structure's `validate()` runs both; a debug build also stops at the first hit or
+//!   projected point outside a primitive's bounds. Condensed:
 //!
 //! ```
 //! use bvhlab::glam::{BVec3, Vec3};
 //! use bvhlab::prelude::*;
-//! use bvhlab::primitive::check_enclosed_by_vertices;
+//! use bvhlab::primitive::{check_bounds_hold, check_enclosed_by_vertices};
 //! use bvhlab::structure::bvh::SphereTree;
 //!
 //! #[derive(Clone, Copy, Debug, PartialEq)]
@@ -179,6 +181,7 @@
 //! ];
 //! for ball in &balls {
 //!     check_enclosed_by_vertices(ball)?;
+//!     check_bounds_hold(ball)?;
 //! }
 //! let tree = SphereTree::<Ball>::build(&balls);
 //! tree.validate()?;

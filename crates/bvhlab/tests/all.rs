@@ -37,6 +37,7 @@ mod mesh;
 mod mesh_fuzz;
 mod mesh_indexed;
 mod newcomer;
+mod newcomer_bounds;
 mod newcomer_validate;
 mod obb;
 mod obb_queries;

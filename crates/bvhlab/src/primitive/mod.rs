@@ -13,7 +13,7 @@ pub mod point;
 pub mod segment;
 pub mod triangle;
 
-pub use contract::check_enclosed_by_vertices;
+pub use contract::{check_bounds_hold, check_enclosed_by_vertices};
 pub use segment::Segment2;
 pub use triangle::Triangle3;
 
@@ -42,7 +42,9 @@ use crate::{Ray, Vector};
 ///    ([`check_enclosed_by_vertices`], which you can call on your own primitives).
 /// 2. **Bounded by [`bounds`](Primitive::bounds).** Every point of the primitive, so every
 ///    hit point, closest point and overlap, lies in its box (grids, k-d trees, BSP trees,
-///    octrees and AABB trees cull by it).
+///    octrees and AABB trees cull by it). [`check_bounds_hold`] probes this, and every
+///    structure's `validate()` runs it; debug builds also check every hit point and
+///    projected point a query meets, and stop with a message naming the primitive.
 /// 3. **Tests agree with the geometry.** [`ray_hit`](Primitive::ray_hit) gives the least
 ///    `t >= 0` whose `ray.at(t)` is on the primitive; [`project_point`](Primitive::project_point)
 ///    a point of the primitive, no farther from the query than any other;
@@ -70,8 +72,9 @@ use crate::{Ray, Vector};
 ///    or `Vec3`). Write the required methods; [`hit_coordinates`](Primitive::hit_coordinates)
 ///    has a default (`[0, 0]`) that a primitive with its own surface coordinates (a ball's
 ///    longitude and latitude, say) replaces.
-/// 2. Call [`check_enclosed_by_vertices`] on a few of your primitives: it catches vertices
-///    that do not enclose the primitive (contract 1) before a tree misses them.
+/// 2. Call [`check_enclosed_by_vertices`] and [`check_bounds_hold`] on a few of your
+///    primitives: they catch vertices that do not enclose the primitive (contract 1) and
+///    bounds too small for it (contract 2) before a tree misses them.
 /// 3. Build any structure over a slice of them, call `validate()`, and compare a few answers
 ///    with [`BruteForce`](crate::BruteForce)'s, which tests every primitive: a difference means
 ///    a method breaks the contract (often a [`bounds`](Primitive::bounds) too small for

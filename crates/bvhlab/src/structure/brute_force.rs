@@ -10,6 +10,7 @@ use super::{
     Event, Hit, HitTracker, Nearest, NearestSet, Observer, PointOf, PrimitiveResult, QueryCost,
     RangeShape, SpatialIndex, Stats, Traced, ValidationError,
 };
+use crate::primitive::contract;
 use crate::{Primitive, Ray, Vector};
 
 /// No structure at all: every query tests every primitive (but those with a NaN or infinite
@@ -61,7 +62,7 @@ impl<P: Primitive> SpatialIndex for BruteForce<P> {
     ) -> Traced<Option<Hit>> {
         let mut best = HitTracker::new(t_max);
         for (i, prim) in self.finite() {
-            let t = prim.ray_hit(ray).filter(|&t| t <= t_max);
+            let t = contract::ray_hit(prim, ray).filter(|&t| t <= t_max);
             observer.on(Event::PrimitiveTest {
                 prim: prim_id(i),
                 result: t.map_or(PrimitiveResult::Miss, PrimitiveResult::Hit),
@@ -88,7 +89,7 @@ impl<P: Primitive> SpatialIndex for BruteForce<P> {
         observer: &mut O,
     ) -> Traced<Option<Hit>> {
         for (tested, (i, prim)) in self.finite().enumerate() {
-            let t = prim.ray_hit(ray).filter(|&t| t <= t_max);
+            let t = contract::ray_hit(prim, ray).filter(|&t| t <= t_max);
             observer.on(Event::PrimitiveTest {
                 prim: prim_id(i),
                 result: t.map_or(PrimitiveResult::Miss, PrimitiveResult::Hit),
@@ -114,7 +115,7 @@ impl<P: Primitive> SpatialIndex for BruteForce<P> {
     ) -> Traced<Vec<Hit>> {
         let mut hits: Vec<Hit> = Vec::new();
         for (i, prim) in self.finite() {
-            let t = prim.ray_hit(ray).filter(|&t| t <= t_max);
+            let t = contract::ray_hit(prim, ray).filter(|&t| t <= t_max);
             observer.on(Event::PrimitiveTest {
                 prim: prim_id(i),
                 result: t.map_or(PrimitiveResult::Miss, PrimitiveResult::Hit),
@@ -142,7 +143,7 @@ impl<P: Primitive> SpatialIndex for BruteForce<P> {
         }
         let mut nearest = NearestSet::new(k);
         for (i, prim) in self.finite() {
-            let q = prim.project_point(point);
+            let q = contract::project_point(prim, point);
             let d = (q - point).length();
             observer.on(Event::PrimitiveTest {
                 prim: prim_id(i),

@@ -233,3 +233,30 @@ pub(crate) fn contract_rounding<P: Primitive>(prim: &P) -> f32 {
         .fold(0.0, f32::max);
     magnitude * bvh::SLACK + bvh::TINY
 }
+
+/// The [`Primitive`](crate::Primitive) contract's checks that `validate()` of every structure
+/// runs on each primitive it indexes (`index` is its input index, for the message): its
+/// vertices enclose it ([`check_enclosed_by_vertices`](crate::primitive::check_enclosed_by_vertices))
+/// and its bounds hold what its own queries give
+/// ([`check_bounds_hold`](crate::primitive::check_bounds_hold)). A primitive with a
+/// non-finite coordinate passes both (it is in no structure).
+pub(crate) fn check_primitive_contract<P: Primitive>(
+    index: usize,
+    prim: &P,
+) -> Result<(), ValidationError> {
+    crate::primitive::check_enclosed_by_vertices(prim)
+        .and_then(|()| crate::primitive::check_bounds_hold(prim))
+        .map_err(|why| {
+            ValidationError::new(format!(
+                "primitive {index} breaks the Primitive contract: {why}"
+            ))
+        })
+}
+
+/// [`check_primitive_contract`] for every primitive of a structure, in input order.
+pub(crate) fn check_primitives_contract<P: Primitive>(prims: &[P]) -> Result<(), ValidationError> {
+    prims
+        .iter()
+        .enumerate()
+        .try_for_each(|(i, prim)| check_primitive_contract(i, prim))
+}

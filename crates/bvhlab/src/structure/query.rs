@@ -2,6 +2,7 @@
 //! share (the best hit so far, the k nearest so far), so that it is written once.
 
 use crate::PointQuery;
+use crate::primitive::contract;
 use crate::volume::{Aabb, BoundingVolume, Sphere};
 use crate::{Primitive, Vector};
 
@@ -229,7 +230,7 @@ impl HitTracker {
     ) -> bool {
         let mut changed = false;
         for (prim, &id) in prims.iter().zip(ids) {
-            if let Some(t) = prim.ray_hit(ray) {
+            if let Some(t) = contract::ray_hit(prim, ray) {
                 changed |= self.offer(id as usize, t);
             }
         }

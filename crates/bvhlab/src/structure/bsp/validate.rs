@@ -5,6 +5,7 @@ use super::BspTree;
 use super::build::{DEPTH_LIMIT, bounds_of};
 use super::plane::Plane;
 use crate::structure::ValidationError;
+use crate::structure::check_primitives_contract;
 use crate::structure::plane_tree::validate::{
     check_coverage, check_layout, check_leaf_ranges, check_nesting,
 };
@@ -23,6 +24,7 @@ use crate::{Primitive, Vector as _};
 /// # Errors
 /// The first violation found.
 pub fn validate<P: Primitive>(tree: &BspTree<P>) -> Result<(), ValidationError> {
+    check_primitives_contract(tree.prims())?;
     check_leaf_ranges(
         tree.nodes().iter().map(|n| n.is_leaf().then(|| n.range())),
         tree.indices.len(),

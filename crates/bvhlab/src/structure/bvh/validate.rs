@@ -4,8 +4,8 @@
 use super::volume::NodeVolume;
 use super::{Bvh, MAX_DEPTH};
 use crate::Primitive;
-use crate::primitive::check_enclosed_by_vertices;
 use crate::structure::ValidationError;
+use crate::structure::check_primitive_contract;
 
 fn fail<T>(message: String) -> Result<T, ValidationError> {
     Err(ValidationError::new(message))
@@ -53,11 +53,7 @@ where
             }
         }
         for (i, prim) in self.prims.iter().enumerate() {
-            if let Err(why) = check_enclosed_by_vertices(prim) {
-                return fail(format!(
-                    "primitive {i} breaks the Primitive contract: {why}"
-                ));
-            }
+            check_primitive_contract(i, prim)?;
             if seen[i] != prim.has_finite_coordinates() {
                 let what = if seen[i] {
                     "non-finite but indexed"

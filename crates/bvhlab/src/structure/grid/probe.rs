@@ -6,6 +6,7 @@
 //! Primitives with a NaN or infinite coordinate ([`Primitive::has_finite_coordinates`]) are in no cell and
 //! no list of either structure: no query answers with them, as brute force does not.
 
+use crate::primitive::contract;
 use std::cmp::Ordering;
 use std::collections::HashSet;
 
@@ -83,9 +84,7 @@ impl<'a, P: Primitive> RayProbe<'a, P> {
             return None;
         }
         self.cost.prim_tests += 1;
-        let t = self.prims[i as usize]
-            .ray_hit(self.ray)
-            .filter(|&t| t <= self.t_max);
+        let t = contract::ray_hit(&self.prims[i as usize], self.ray).filter(|&t| t <= self.t_max);
         observer.on(Event::PrimitiveTest {
             prim: i,
             result: t.map_or(PrimitiveResult::Miss, PrimitiveResult::Hit),
@@ -129,7 +128,7 @@ impl<'a, P: Primitive> NearestProbe<'a, P> {
             return;
         }
         self.cost.prim_tests += 1;
-        let q = self.prims[i as usize].project_point(self.point);
+        let q = contract::project_point(&self.prims[i as usize], self.point);
         let d = (q - self.point).length();
         observer.on(Event::PrimitiveTest {
             prim: i,

@@ -1,5 +1,6 @@
 //! The grid's invariants and numbers.
 
+use crate::structure::check_primitives_contract;
 use std::cmp::Ordering;
 
 use super::layout::Grid;
@@ -42,6 +43,7 @@ impl<P: Primitive> Grid<P> {
     pub(super) fn check(&self) -> Result<(), ValidationError> {
         self.check_shape()?;
         self.check_layout()?;
+        check_primitives_contract(&self.prims)?;
         if self.unplaced.windows(2).any(|w| w[0] >= w[1]) {
             return fail("the unplaced list is not ascending".into());
         }

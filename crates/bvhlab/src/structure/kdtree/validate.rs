@@ -5,6 +5,7 @@ use super::KdTree;
 use super::build::DEPTH_LIMIT;
 use super::layout::KdNode;
 use crate::structure::ValidationError;
+use crate::structure::check_primitives_contract;
 use crate::structure::contract_rounding;
 use crate::structure::plane_tree::validate::{
     check_coverage, check_layout, check_leaf_ranges, check_nesting,
@@ -59,6 +60,7 @@ fn interior<V: Vector>(cell: &Aabb<V>, root: &Aabb<V>, rounding: f32) -> Option<
 /// # Errors
 /// The first violation found.
 pub fn validate<P: Primitive>(tree: &KdTree<P>) -> Result<(), ValidationError> {
+    check_primitives_contract(tree.prims())?;
     let finite = tree
         .prims()
         .iter()

@@ -18,6 +18,7 @@
 
 use super::{PlaneNode, PlaneTree, PointOfTree, ROOT, SLACK, magnitude, node_id};
 use crate::PointQuery;
+use crate::primitive::contract;
 use crate::structure::{
     Event, Mailbox, Nearest, NearestSet, Observer, PrimitiveResult, PruneAt, PruneReason,
     QueryCost, Traced,
@@ -157,7 +158,7 @@ fn test_leaf<P: Primitive, O: Observer<P::Point>>(
             continue;
         }
         cost.prim_tests += 1;
-        let q = prims[prim as usize].project_point(point);
+        let q = contract::project_point(&prims[prim as usize], point);
         let d = (q - point).length();
         observer.on(Event::PrimitiveTest {
             prim,

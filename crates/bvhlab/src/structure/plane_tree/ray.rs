@@ -28,12 +28,13 @@
 //! query).
 
 use super::{PlaneNode, PlaneTree, PointOfTree, ROOT, node_id, root_interval};
+use crate::Ray;
+use crate::primitive::contract;
 use crate::structure::query::by_t_then_prim;
 use crate::structure::{
     Event, Hit, HitTracker, Mailbox, Observer, PrimitiveResult, PruneAt, PruneReason, QueryCost,
     Traced,
 };
-use crate::{Primitive, Ray};
 
 /// A node waiting on the stack with the part of the ray inside its region.
 #[derive(Clone, Copy, Debug)]
@@ -196,9 +197,8 @@ impl<'t, T: PlaneTree> RayWalk<'t, T> {
             return None;
         }
         self.cost.prim_tests += 1;
-        let t = self.tree.prims()[prim as usize]
-            .ray_hit(self.ray)
-            .filter(|&t| t <= t_max);
+        let t =
+            contract::ray_hit(&self.tree.prims()[prim as usize], self.ray).filter(|&t| t <= t_max);
         observer.on(Event::PrimitiveTest {
             prim,
             result: t.map_or(PrimitiveResult::Miss, PrimitiveResult::Hit),

@@ -2,6 +2,7 @@
 
 use super::build::{Split, child_mask};
 use super::layout::{MAX_DEPTH, Orthtree, child_box_at, child_count, split_point};
+use crate::structure::check_primitives_contract;
 use crate::structure::stats::sah_cost_boxes;
 use crate::structure::{NodeId, Stats, ValidationError, contract_rounding};
 use crate::volume::Aabb;
@@ -42,6 +43,7 @@ impl<P: Primitive> Orthtree<P> {
     /// moderate inputs also against every leaf independently).
     pub(super) fn check(&self) -> Result<(), ValidationError> {
         self.check_indices()?;
+        check_primitives_contract(&self.prims)?;
         if let Some(&i) = self
             .refs
             .iter()

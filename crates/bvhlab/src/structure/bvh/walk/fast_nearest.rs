@@ -16,6 +16,7 @@
 //! is the least `(distance, index)` over every primitive not pruned, whatever the order they
 //! are met in.
 
+use crate::primitive::contract;
 use crate::structure::Nearest;
 use crate::structure::bvh::volume::{GROW, NodeVolume, query_slack};
 use crate::structure::bvh::{Bvh, MAX_DEPTH};
@@ -154,7 +155,7 @@ impl<V: Vector> Best<V> {
     ) -> bool {
         let mut changed = false;
         for (prim, &id) in prims.iter().zip(ids) {
-            let q = prim.project_point(point);
+            let q = contract::project_point(prim, point);
             let distance = (q - point).length();
             let id = id as usize;
             if distance < self.distance || (distance == self.distance && id < self.prim) {

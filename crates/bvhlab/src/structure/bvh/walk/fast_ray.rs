@@ -20,6 +20,7 @@
 //! child on a tie) with the same constant limit `t_max`, and tests a leaf's primitives in
 //! leaf order, so both stop at the same primitive: the same answer, bit for bit.
 
+use crate::primitive::contract;
 use crate::structure::bvh::volume::{GROW, NodeVolume, PreparedRay};
 use crate::structure::bvh::{Bvh, MAX_DEPTH};
 use crate::structure::{Hit, HitTracker};
@@ -80,7 +81,7 @@ where
                 if ANY {
                     let leaf = self.leaf_prims[range.clone()].iter();
                     for (prim, &id) in leaf.zip(&self.leaf_ids[range.clone()]) {
-                        if let Some(t) = prim.ray_hit(ray).filter(|&t| t <= t_max) {
+                        if let Some(t) = contract::ray_hit(prim, ray).filter(|&t| t <= t_max) {
                             return Some(Hit::unplaced(id as usize, t));
                         }
                     }

@@ -17,6 +17,7 @@
 //! the pruned distance query, bounds the pruning). Recursion depth is bounded by the tree's
 //! depth, at most [`MAX_DEPTH`](crate::structure::bvh::MAX_DEPTH).
 
+use crate::primitive::contract;
 use crate::structure::bvh::Bvh;
 use crate::structure::bvh::volume::{GROW, NodeVolume, PreparedRay, query_slack};
 use crate::structure::query::placed;
@@ -221,7 +222,7 @@ where
             .zip(&bvh.leaf_ids[range])
         {
             self.cost.prim_tests += 1;
-            let t = prim.ray_hit(&self.ray.ray).filter(|&t| t <= self.t_max);
+            let t = contract::ray_hit(prim, &self.ray.ray).filter(|&t| t <= self.t_max);
             self.observer.on(Event::PrimitiveTest {
                 prim: id,
                 result: t.map_or(PrimitiveResult::Miss, PrimitiveResult::Hit),
@@ -325,7 +326,7 @@ where
             .zip(&bvh.leaf_ids[range])
         {
             self.cost.prim_tests += 1;
-            let point = prim.project_point(self.point);
+            let point = contract::project_point(prim, self.point);
             let distance = (point - self.point).length();
             self.observer.on(Event::PrimitiveTest {
                 prim: id,

@@ -8,6 +8,7 @@
 //! primitive there ties, and ties go to the lower index.
 
 use super::stack::{Entry, Stack};
+use crate::primitive::contract;
 use crate::structure::bvh::Bvh;
 use crate::structure::bvh::volume::{GROW, NodeVolume, query_slack};
 use crate::structure::{
@@ -82,7 +83,7 @@ where
                     .iter()
                     .zip(&self.leaf_ids[range])
                 {
-                    let q = prim.project_point(point);
+                    let q = contract::project_point(prim, point);
                     let d = (q - point).length();
                     observer.on(Event::PrimitiveTest {
                         prim: id,

@@ -13,6 +13,7 @@
 //! [`layout::gpu`](crate::structure::bvh::layout::gpu).
 
 use super::stack::{Entry, Stack};
+use crate::primitive::contract;
 use crate::structure::bvh::Bvh;
 use crate::structure::bvh::volume::{GROW, NodeVolume, PreparedRay};
 use crate::structure::query::by_t_then_prim;
@@ -59,7 +60,7 @@ fn test<P: Primitive, O: Observer<P::Point>>(
     cost: &mut QueryCost,
 ) -> Option<f32> {
     cost.prim_tests += 1;
-    let t = prim.ray_hit(ray).filter(|&t| t <= t_max);
+    let t = contract::ray_hit(prim, ray).filter(|&t| t <= t_max);
     observer.on(Event::PrimitiveTest {
         prim: id,
         result: t.map_or(PrimitiveResult::Miss, PrimitiveResult::Hit),

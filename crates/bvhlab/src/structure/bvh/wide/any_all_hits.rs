@@ -25,6 +25,7 @@ use super::layout::{Bvh4, Bvh4Node, WIDTH};
 use super::nearest::leaf_lanes;
 use super::ray::{LaneRay, enter_lanes};
 use super::stack::{MIDDLE_DEPTH, SHALLOW_DEPTH, capacity};
+use crate::primitive::contract;
 use crate::structure::Hit;
 use crate::structure::bvh::MAX_DEPTH;
 use crate::structure::bvh::volume::{GROW, PreparedRay};
@@ -99,7 +100,7 @@ impl<P: Primitive> Bvh4<P> {
                 let start = node.child[lane] as usize;
                 for slot in start..start + node.count[lane] as usize {
                     let prim = &self.leaf_prims[slot];
-                    if let Some(t) = prim.ray_hit(ray).filter(|&t| t <= t_max) {
+                    if let Some(t) = contract::ray_hit(prim, ray).filter(|&t| t <= t_max) {
                         let hit = Hit::on(self.leaf_ids[slot] as usize, t, prim, ray);
                         if ANY {
                             return Some(hit);

@@ -15,6 +15,7 @@
 use super::layout::Bvh4;
 use super::nearest::{bound_lanes, leaf_lanes, within};
 use super::stack::{LaneStack, visit_nearest};
+use crate::primitive::contract;
 use crate::structure::bvh::volume::{GROW, query_slack};
 use crate::structure::bvh::walk::fast_nearest::reach_squared;
 use crate::structure::{Nearest, NearestSet};
@@ -60,7 +61,7 @@ impl<P: Primitive> Bvh4<P> {
                 bits &= bits - 1;
                 let start = node.child[lane] as usize;
                 for slot in start..start + node.count[lane] as usize {
-                    let q = self.leaf_prims[slot].project_point(point);
+                    let q = contract::project_point(&self.leaf_prims[slot], point);
                     let distance = (q - point).length();
                     if best.offer(self.leaf_ids[slot] as usize, q, distance) {
                         reach_sq = reach_squared(best.bound() * GROW + slack);

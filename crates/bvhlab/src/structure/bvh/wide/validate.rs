@@ -3,9 +3,9 @@
 
 use super::layout::{Bvh4, WIDTH};
 use super::refit::node_box;
-use crate::primitive::check_enclosed_by_vertices;
 use crate::structure::ValidationError;
 use crate::structure::bvh::MAX_DEPTH;
+use crate::structure::check_primitive_contract;
 use crate::volume::BoundingVolume;
 use crate::{Primitive, Vector};
 
@@ -83,11 +83,7 @@ impl<P: Primitive> Bvh4<P> {
             if !prim.has_finite_coordinates() {
                 return fail(format!("primitive {id} is non-finite but indexed"));
             }
-            if let Err(why) = check_enclosed_by_vertices(prim) {
-                return fail(format!(
-                    "primitive {id} breaks the Primitive contract: {why}"
-                ));
-            }
+            check_primitive_contract(id as usize, prim)?;
         }
         let mut reached = vec![false; self.nodes.len()];
         let mut covered = vec![false; self.leaf_prims.len()];
