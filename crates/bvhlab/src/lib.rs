@@ -45,7 +45,7 @@
 //! | job | structure | why |
 //! | --- | --- | --- |
 //! | many first hits, any hits or closest points on a static triangle mesh | [`Bvh4`] (`Bvh4::build`) | the fastest here: on the bunny, first hits in 0.40 and closest points in 0.43 of the binary tree's time, 0.09 and 0.08 of the k-d tree's; it also answers all hits, the k nearest and ranges ([`Bvh4::ray_all_hits`], [`Bvh4::k_nearest`], [`Bvh4::range`]), and refits ([`Bvh4::refit`]). No events, no collision query, no [`SpatialIndex`]. |
-//! | stepping through a query, its events and [`QueryCost`]; collision between two trees; sphere or OBB node volumes; refit after motion | [`Bvh`] ([`AabbTree3`], [`SphereTree3`], [`ObbTree3`], and their 2D forms) | every query observed ([`Observer`]), which the lab plays back; [`SpatialIndex::collide`]; three node volumes; [`Bvh::refit`](structure::bvh::Bvh::refit) and `needs_rebuild`. Its plain first hit and closest point have fast walks of their own. |
+//! | stepping through a query, its events and [`QueryCost`]; collision between two trees; sphere or OBB node volumes; refit after motion | [`Bvh`] ([`AabbTree<P>`](AabbTree), [`SphereTree<P>`](SphereTree), [`ObbTree<P>`](ObbTree) over any primitive; `AabbTree3` is `AabbTree<Triangle3>`, `AabbTree2` is `AabbTree<Segment2>`, and so on) | every query observed ([`Observer`]), which the lab plays back; [`SpatialIndex::collide`]; three node volumes; [`Bvh::refit`](structure::bvh::Bvh::refit) and `needs_rebuild`. Its plain first hit and closest point have fast walks of their own. |
 //! | primitives of about one size spread evenly, rebuilt often | [`Grid`] | built in linear time (a counting sort into cells): builds 200k uniform points in 0.14 of [`Bvh4`]'s time and answers their closest points in 2.2 times its time; on the bunny (uneven density) its build takes 1.4 times [`Bvh4`]'s and its first hits 16 times. |
 //! | point clouds, the textbook nearest-neighbour tree | [`KdTree`] | over points [`KdTree::build`] splits at the median with leaves of at most 4 (Friedman, Bentley and Finkel 1977), 2.5 times [`Bvh4`]'s closest-point time on 200k points; over triangles it builds the SAH tree for rays (pbrt-v3), 11 times [`Bvh4`]'s first-hit time on the bunny. |
 //! | splitting by arbitrary planes (autopartition along the primitives' own planes) | [`BspTree`] | what the lecture's BSP trees teach (front-to-back order by planes); the slowest build and queries here (first hits 29 times [`Bvh4`]'s time on the bunny). |
@@ -276,7 +276,7 @@
 //! | feature | what it adds |
 //! | --- | --- |
 //! | `serde` | `bvhlab::saved`: saving a built structure as bytes and loading it back; serde derives on the layouts (postcard is the byte format) |
-//! | `parallel` | the batch queries (`ray_first_hits`, `ray_any_hits`, `closest_points`) on every core, and `build_parallel` for the AABB tree and [`Bvh4`] (the same tree as `build`); rayon |
+//! | `parallel` | the batch queries (`ray_first_hits`, `ray_any_hits`, `closest_points`) on every core, and `build_parallel` for the AABB tree and [`Bvh4`] (the same tree as `build`); rayon, re-exported as `bvhlab::rayon`; `queries::with_threads` sets the thread count |
 //!
 //! These docs as docs.rs builds them show every feature's items, each marked with the feature
 //! it needs; `cargo doc` alone leaves them out. To read them here:
@@ -288,6 +288,11 @@
 #![cfg_attr(docsrs, feature(doc_cfg))]
 
 pub use glam;
+/// rayon, whose pool the `parallel` feature's batch queries and builds run on: build a
+/// [`rayon::ThreadPool`] of the size you want and run them inside its `install`
+/// ([`queries::with_threads`] does it for one call).
+#[cfg(feature = "parallel")]
+pub use rayon;
 
 pub mod error;
 pub mod math;
@@ -306,7 +311,7 @@ pub use mesh::{Mesh, MeshError, MeshStats};
 pub use primitive::{Primitive, Segment2, Triangle3};
 pub use queries::{PointQuery, RayCast};
 pub use ray::Ray;
-pub use structure::bvh::Bvh4;
+pub use structure::bvh::{AabbTree, Bvh4, ObbTree, SphereTree};
 pub use structure::{
     BruteForce, BspTree, Bvh, Event, Grid, Hit, KdTree, Nearest, NodeId, NodeOutline, NodeShape,
     Observer, Orthtree, Outline, QueryCost, RangeShape, Recorder, SpatialIndex, SplitPlane, Stats,
@@ -346,18 +351,19 @@ pub type ConvexHull3 = ConvexHull<Vec3>;
 #[doc = include_str!("../../../README.md")]
 pub struct ReadmeDoctests;
 
-/// A bounding volume hierarchy with boxes as node volumes, over 2D segments.
-pub type AabbTree2 = Bvh<Aabb2, Segment2>;
-/// A bounding volume hierarchy with boxes as node volumes, over triangles.
-pub type AabbTree3 = Bvh<Aabb3, Triangle3>;
-/// A bounding volume hierarchy with circles as node volumes, over 2D segments.
-pub type SphereTree2 = Bvh<Sphere2, Segment2>;
-/// A bounding volume hierarchy with spheres as node volumes, over triangles.
-pub type SphereTree3 = Bvh<Sphere3, Triangle3>;
-/// A bounding volume hierarchy with oriented boxes as node volumes, over 2D segments.
-pub type ObbTree2 = Bvh<Obb2, Segment2>;
-/// A bounding volume hierarchy with oriented boxes as node volumes, over triangles.
-pub type ObbTree3 = Bvh<Obb3, Triangle3>;
+/// The AABB tree ([`AabbTree`]) over 2D segments: `AabbTree<Segment2>`.
+pub type AabbTree2 = AabbTree<Segment2>;
+/// The AABB tree ([`AabbTree`]) over triangles: `AabbTree<Triangle3>`.
+pub type AabbTree3 = AabbTree<Triangle3>;
+/// The sphere tree ([`SphereTree`]) over 2D segments (circles as node volumes):
+/// `SphereTree<Segment2>`.
+pub type SphereTree2 = SphereTree<Segment2>;
+/// The sphere tree ([`SphereTree`]) over triangles: `SphereTree<Triangle3>`.
+pub type SphereTree3 = SphereTree<Triangle3>;
+/// The OBB tree ([`ObbTree`]) over 2D segments: `ObbTree<Segment2>`.
+pub type ObbTree2 = ObbTree<Segment2>;
+/// The OBB tree ([`ObbTree`]) over triangles: `ObbTree<Triangle3>`.
+pub type ObbTree3 = ObbTree<Triangle3>;
 /// A k-d tree over 2D segments.
 pub type KdTree2 = KdTree<Segment2>;
 /// A k-d tree over triangles.
@@ -380,7 +386,7 @@ pub type Octree3 = Orthtree<Triangle3>;
 pub mod prelude {
     pub use crate::primitive::Primitive;
     pub use crate::queries::{PointQuery, RayCast};
-    pub use crate::structure::bvh::Bvh4;
+    pub use crate::structure::bvh::{AabbTree, Bvh4, ObbTree, SphereTree};
     pub use crate::structure::{Outline, SpatialIndex};
     pub use crate::vector::Vector;
     pub use crate::volume::BoundingVolume;

@@ -38,6 +38,7 @@ mod mesh_fuzz;
 mod mesh_indexed;
 mod newcomer;
 mod newcomer_bounds;
+mod newcomer_names;
 mod newcomer_validate;
 mod obb;
 mod obb_queries;

@@ -70,3 +70,70 @@ fn batch_queries_answer_as_one_query_at_a_time() {
     assert!(Bvh4::build(&tris).ray_first_hits(&[], 1.0).is_empty());
     assert!(AabbTree3::build(&tris).closest_points(&[]).is_empty());
 }
+
+/// A thing to query that notes which pool thread answered each query (rayon's index within
+/// its pool), so the test sees where the batch ran.
+#[cfg(feature = "parallel")]
+struct Recording<'a> {
+    tree: &'a Bvh4<Triangle3>,
+    threads: std::sync::Mutex<std::collections::BTreeSet<Option<usize>>>,
+}
+
+#[cfg(feature = "parallel")]
+impl RayCast<Vec3> for Recording<'_> {
+    fn ray_first_hit(&self, ray: &Ray3, t_max: f32) -> Option<bvhlab::Hit> {
+        let index = rayon::current_thread_index();
+        self.threads.lock().expect("not poisoned").insert(index);
+        self.tree.ray_first_hit(ray, t_max)
+    }
+}
+
+/// A newcomer's report (issue 33): batch calls offered no thread count, only rayon's global
+/// pool. `with_threads(n, ..)` runs them on n threads, with the same answers.
+#[cfg(feature = "parallel")]
+#[test]
+fn with_threads_runs_batches_and_builds_on_that_many_threads_with_the_same_answers() {
+    let mut rng = ChaCha8Rng::seed_from_u64(33);
+    let tris: Vec<Triangle3> = (0..2000)
+        .map(|_| {
+            let a = random_vec3(&mut rng, 10.0);
+            Triangle3::new(
+                a,
+                a + random_vec3(&mut rng, 1.5),
+                a + random_vec3(&mut rng, 1.5),
+            )
+        })
+        .collect();
+    let rays: Vec<Ray3> = (0..5000)
+        .map(|_| {
+            Ray3::through(random_vec3(&mut rng, 14.0), random_vec3(&mut rng, 8.0))
+                .expect("a valid ray")
+        })
+        .collect();
+    let tree = Bvh4::build(&tris);
+    let want = tree.ray_first_hits(&rays, f32::INFINITY);
+    for threads in [1, 3] {
+        let recording = Recording {
+            tree: &tree,
+            threads: std::sync::Mutex::default(),
+        };
+        let (hits, built, pool_size) = bvhlab::queries::with_threads(threads, || {
+            (
+                recording.ray_first_hits(&rays, f32::INFINITY),
+                Bvh4::build_parallel(&tris),
+                rayon::current_num_threads(),
+            )
+        })
+        .expect("threads start");
+        assert_eq!(hits, want, "{threads} threads: the answers");
+        assert_eq!(built, tree, "{threads} threads: the same tree");
+        assert_eq!(pool_size, threads);
+        let used = recording.threads.into_inner().expect("not poisoned");
+        // Every query was answered on a thread of that pool (index < threads), none on the
+        // caller's thread (which is in no pool: index None).
+        assert!(
+            !used.is_empty() && used.iter().all(|i| i.is_some_and(|i| i < threads)),
+            "{threads} threads: answered on {used:?}"
+        );
+    }
+}

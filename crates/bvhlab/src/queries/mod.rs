@@ -32,6 +32,11 @@
 //! ```
 
 mod batch;
+#[cfg(feature = "parallel")]
+mod threads;
+
+#[cfg(feature = "parallel")]
+pub use threads::with_threads;
 
 use crate::error::{GeometryError, check_finite};
 use crate::{Hit, Nearest, Primitive, Ray, Vector};
@@ -64,7 +69,8 @@ pub trait RayCast<V: Vector> {
 
     /// [`ray_first_hit`](Self::ray_first_hit) of each ray, in the rays' order: the same
     /// answers as one call per ray. With the `parallel` feature the rays are split across
-    /// threads (rayon's work stealing).
+    /// threads (rayon's work stealing), one per core or as many as
+    /// `queries::with_threads` (the `parallel` feature) or a rayon pool's `install` gives.
     fn ray_first_hits(&self, rays: &[Ray<V>], t_max: f32) -> Vec<Option<Hit>>
     where
         Self: Sync,

@@ -312,7 +312,7 @@ where
 pub type TreeBits = (Vec<Vec<u32>>, Vec<u32>);
 
 /// Everything of a box tree, as bits: `==` on floats would take `-0` for `0`.
-pub fn tree_bits<P: Primitive>(tree: &bvhlab::structure::bvh::AabbTree<P>) -> TreeBits {
+pub fn tree_bits<P: Primitive>(tree: &AabbTree<P>) -> TreeBits {
     let nodes = tree
         .nodes()
         .iter()

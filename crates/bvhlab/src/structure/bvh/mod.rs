@@ -176,11 +176,15 @@ use crate::structure::query::{placed, placed_all_traced, placed_traced};
 use crate::volume::{Aabb, Obb, Sphere};
 use crate::{PointQuery, Primitive, Ray, RayCast};
 
-/// An AABB tree: a [`Bvh`] whose nodes are axis-aligned boxes.
+/// An AABB tree: a [`Bvh`] whose nodes are axis-aligned boxes, over any primitive `P` (also
+/// `bvhlab::AabbTree`, and in the prelude). `AabbTree3` and `AabbTree2` are its forms over
+/// triangles and 2D segments: the same type, shorter to write.
 pub type AabbTree<P> = Bvh<Aabb<<P as Primitive>::Point>, P>;
-/// A sphere tree: a [`Bvh`] whose nodes are spheres (circles in 2D).
+/// A sphere tree: a [`Bvh`] whose nodes are spheres (circles in 2D), over any primitive `P`
+/// (`SphereTree3` is `SphereTree<Triangle3>`).
 pub type SphereTree<P> = Bvh<Sphere<<P as Primitive>::Point>, P>;
-/// An OBB tree: a [`Bvh`] whose nodes are oriented boxes.
+/// An OBB tree: a [`Bvh`] whose nodes are oriented boxes, over any primitive `P`
+/// (`ObbTree3` is `ObbTree<Triangle3>`).
 pub type ObbTree<P> = Bvh<Obb<<P as Primitive>::Point>, P>;
 
 impl<B, P> Bvh<B, P>
