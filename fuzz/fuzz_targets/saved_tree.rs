@@ -17,7 +17,7 @@ use bvhlab::saved::{self, HEADER_LEN, Saved};
 use bvhlab::structure::{BruteForce, PointOf, RangeShape};
 use bvhlab::{
     Aabb, AabbTree2, AabbTree3, Bsp3, Bvh4, Grid2, KdTree, ObbTree3, Octree3, Ray, RayCast,
-    SpatialIndex, Sphere, SphereTree2, Triangle3, Vector,
+    SpatialIndex, SpatialQuery, Sphere, SphereTree2, Triangle3, Vector,
 };
 use libfuzzer_sys::fuzz_target;
 

@@ -3,6 +3,7 @@
 //! stay exact, and the structures that partition space say why they rebuild instead.
 
 use bvhlab::RayCast;
+use bvhlab::SpatialQuery;
 use bvhlab::glam::Vec2;
 use bvhlab::{BruteForce, Ray2, Segment2, SpatialIndex};
 use bvhlab_app::model::build_job::Structure;

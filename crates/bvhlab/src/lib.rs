@@ -10,7 +10,9 @@
 //!   [`PointQuery`] (`closest_point`, `distance`), each with a batch form over a slice
 //!   (`ray_first_hits`, `closest_points`, ...) that the `parallel` feature spreads over every
 //!   core (it also builds the AABB tree and [`Bvh4`] on every core: `build_parallel`, the same
-//!   tree). Builds take their options the same way everywhere
+//!   tree). Every structure, [`Bvh4`] included, also answers [`SpatialQuery`]
+//!   (`ray_all_hits`, `k_nearest`, `range`): write code for any structure against these
+//!   three traits. Builds take their options the same way everywhere
 //!   (`Tree::build_with(&prims, &options)`, the leaf option is `leaf_size`).
 //! - Bounding volumes, each fitted to a point set and each answering [`RayCast`],
 //!   [`PointQuery`] and the queries of [`prelude::BoundingVolume`] (ray interval,
@@ -44,7 +46,7 @@
 //!
 //! | job | structure | why |
 //! | --- | --- | --- |
-//! | many first hits, any hits or closest points on a static triangle mesh | [`Bvh4`] (`Bvh4::build`) | the fastest here: on the bunny, first hits in 0.40 and closest points in 0.43 of the binary tree's time, 0.09 and 0.08 of the k-d tree's; it also answers all hits, the k nearest and ranges ([`Bvh4::ray_all_hits`], [`Bvh4::k_nearest`], [`Bvh4::range`]), and refits ([`Bvh4::refit`]). No events, no collision query, no [`SpatialIndex`]. |
+//! | many first hits, any hits or closest points on a static triangle mesh | [`Bvh4`] (`Bvh4::build`) | the fastest here: on the bunny, first hits in 0.40 and closest points in 0.43 of the binary tree's time, 0.09 and 0.08 of the k-d tree's; it also answers all hits, the k nearest and ranges ([`Bvh4::ray_all_hits`], [`Bvh4::k_nearest`], [`Bvh4::range`]), and refits ([`Bvh4::refit`]). It answers [`SpatialQuery`], the trait to write code for any structure against; it has no events, no collision query, and is no [`SpatialIndex`] (the lab's stepping). |
 //! | stepping through a query, its events and [`QueryCost`]; collision between two trees; sphere or OBB node volumes; refit after motion | [`Bvh`] ([`AabbTree<P>`](AabbTree), [`SphereTree<P>`](SphereTree), [`ObbTree<P>`](ObbTree) over any primitive; `AabbTree3` is `AabbTree<Triangle3>`, `AabbTree2` is `AabbTree<Segment2>`, and so on) | every query observed ([`Observer`]), which the lab plays back; [`SpatialIndex::collide`]; three node volumes; [`Bvh::refit`](structure::bvh::Bvh::refit) and `needs_rebuild`. Its plain first hit and closest point have fast walks of their own. |
 //! | primitives of about one size spread evenly, rebuilt often | [`Grid`] | built in linear time (a counting sort into cells): builds 200k uniform points in 0.14 of [`Bvh4`]'s time and answers their closest points in 2.2 times its time; on the bunny (uneven density) its build takes 1.4 times [`Bvh4`]'s and its first hits 16 times. |
 //! | point clouds, the textbook nearest-neighbour tree | [`KdTree`] | over points [`KdTree::build`] splits at the median with leaves of at most 4 (Friedman, Bentley and Finkel 1977), 2.5 times [`Bvh4`]'s closest-point time on 200k points; over triangles it builds the SAH tree for rays (pbrt-v3), 11 times [`Bvh4`]'s first-hit time on the bunny. |
@@ -314,8 +316,8 @@ pub use ray::Ray;
 pub use structure::bvh::{AabbTree, Bvh4, ObbTree, SphereTree};
 pub use structure::{
     BruteForce, BspTree, Bvh, Event, Grid, Hit, KdTree, Nearest, NodeId, NodeOutline, NodeShape,
-    Observer, Orthtree, Outline, QueryCost, RangeShape, Recorder, SpatialIndex, SplitPlane, Stats,
-    Traced,
+    Observer, Orthtree, Outline, QueryCost, RangeShape, Recorder, SpatialIndex, SpatialQuery,
+    SplitPlane, Stats, Traced,
 };
 pub use vector::Vector;
 pub use volume::{
@@ -387,7 +389,7 @@ pub mod prelude {
     pub use crate::primitive::Primitive;
     pub use crate::queries::{PointQuery, RayCast};
     pub use crate::structure::bvh::{AabbTree, Bvh4, ObbTree, SphereTree};
-    pub use crate::structure::{Outline, SpatialIndex};
+    pub use crate::structure::{Outline, SpatialIndex, SpatialQuery};
     pub use crate::vector::Vector;
     pub use crate::volume::BoundingVolume;
     pub use crate::{

@@ -39,6 +39,7 @@ mod mesh_indexed;
 mod newcomer;
 mod newcomer_bounds;
 mod newcomer_names;
+mod newcomer_spatial_query;
 mod newcomer_validate;
 mod obb;
 mod obb_queries;

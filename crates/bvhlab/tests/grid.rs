@@ -5,6 +5,7 @@
 use crate::grid_support;
 
 use bvhlab::RayCast;
+use bvhlab::SpatialQuery;
 use bvhlab::glam::{Vec2, Vec3};
 use bvhlab::structure::grid::{Grid, GridOptions};
 use bvhlab::structure::{PrimitiveResult, PruneReason, Recorder};

@@ -6,6 +6,7 @@
 use crate::grid_support;
 
 use bvhlab::RayCast;
+use bvhlab::SpatialQuery;
 use bvhlab::glam::{Vec2, Vec3};
 use bvhlab::structure::quadtree::{Orthtree, OrthtreeOptions};
 use bvhlab::structure::{NodeId, PrimitiveResult, Recorder};

@@ -1,10 +1,13 @@
 //! Spatial data structures (lecture §3) and the one query interface they all answer.
 //!
 //! Every structure answers [`RayCast`] (ray first hit, any hit) and [`PointQuery`] (closest
-//! point, distance), as volumes and primitives do, and [`SpatialIndex`]: all hits, k nearest,
-//! range and collision queries, each in a plain form and in an `_observed` form (first and
-//! any hit too) that reports every step to an [`Observer`] and returns its [`QueryCost`]. [`BruteForce`] answers the same queries by testing every primitive: it is the
-//! reference the tests compare against and the baseline the lab shows beside each structure.
+//! point, distance), as volumes and primitives do, and [`SpatialQuery`] (all hits, k nearest,
+//! range): code that takes any structure, the fast [`Bvh4`](bvh::Bvh4) included, is written
+//! against these. Every structure but [`Bvh4`](bvh::Bvh4) also answers [`SpatialIndex`]:
+//! each query in an `_observed` form that reports every step to an [`Observer`] and returns
+//! its [`QueryCost`], collision, statistics and validation. [`BruteForce`] answers the same
+//! queries by testing every primitive: it is the reference the tests compare against and the
+//! baseline the lab shows beside each structure.
 //!
 //! ## Where each structure lives
 //!
@@ -39,6 +42,7 @@ pub mod plane_tree;
 #[doc(alias = "octree", alias = "orthtree")]
 pub mod quadtree;
 pub mod query;
+pub mod spatial_query;
 pub mod stats;
 pub mod update;
 
@@ -52,23 +56,27 @@ pub use observe::{Event, NodeId, Observer, PrimitiveResult, PruneAt, PruneReason
 pub use outline::{NodeOutline, NodeShape, Outline, SplitPlane};
 pub use quadtree::{Orthtree, OrthtreeOptions};
 pub use query::{Hit, HitTracker, Nearest, NearestSet, QueryCost, RangeShape, Traced};
+pub use spatial_query::SpatialQuery;
 pub use stats::{Stats, ValidationError};
 pub use update::{Removed, UpdateError};
 
+#[cfg(doc)]
 use crate::queries::{PointQuery, RayCast};
 use crate::{Primitive, Ray};
 
 /// The vector type a structure works in.
 pub type PointOf<S> = <<S as SpatialIndex>::Prim as Primitive>::Point;
 
-/// The queries every spatial structure answers, exactly.
+/// The queries every spatial structure answers, exactly, each observed step by step: what
+/// the lab steps through.
 ///
 /// The first hit, any hit and the closest point are the questions volumes and primitives
-/// answer too: [`RayCast`] and [`PointQuery`], which every structure implements (the macro
+/// answer too: [`RayCast`] and [`PointQuery`]; all hits, the k nearest and range are
+/// [`SpatialQuery`]'s. Every structure implements all three (the macro
 /// `queries_by_observed_walks!` answers them by the observed walks with no observer; the
-/// [`Bvh`] has faster unobserved walks of its own). This trait adds what only a structure
-/// over many primitives answers: all hits, the k nearest, range and collision, each also
-/// observed step by step, and the structure's statistics and invariants.
+/// [`Bvh`] has faster unobserved first-hit and closest-point walks of its own). This trait
+/// adds each query observed step by step, collision, and the structure's statistics and
+/// invariants.
 ///
 /// Primitives are named by their index in the slice the structure was built from. Answers
 /// are deterministic and equal to [`BruteForce`]'s: hits at equal `t` and neighbours at equal
@@ -76,7 +84,7 @@ pub type PointOf<S> = <<S as SpatialIndex>::Prim as Primitive>::Point;
 /// answer (`None` or empty); the `checked_` forms report it as an error instead. A primitive
 /// with a NaN or infinite coordinate is never an answer, from any structure or from brute
 /// force ([`Primitive::has_finite_coordinates`]): it keeps its index, and nothing else sees it.
-pub trait SpatialIndex: RayCast<PointOf<Self>> + PointQuery<PointOf<Self>> {
+pub trait SpatialIndex: SpatialQuery<PointOf<Self>> {
     /// What the structure stores.
     type Prim: Primitive;
 
@@ -148,24 +156,6 @@ pub trait SpatialIndex: RayCast<PointOf<Self>> + PointQuery<PointOf<Self>> {
     /// A [`ValidationError`] saying what is wrong.
     fn validate(&self) -> Result<(), ValidationError>;
 
-    /// Every hit with `0 <= t <= t_max`, sorted by `t`.
-    #[inline]
-    fn ray_all_hits(&self, ray: &Ray<PointOf<Self>>, t_max: f32) -> Vec<Hit> {
-        self.ray_all_hits_observed(ray, t_max, &mut ()).answer
-    }
-
-    /// The `k` nearest primitives, nearest first.
-    #[inline]
-    fn k_nearest(&self, point: PointOf<Self>, k: usize) -> Vec<Nearest<PointOf<Self>>> {
-        self.k_nearest_observed(point, k, &mut ()).answer
-    }
-
-    /// The primitives that share a point with the region, ascending.
-    #[inline]
-    fn range(&self, shape: &RangeShape<PointOf<Self>>) -> Vec<usize> {
-        self.range_observed(shape, &mut ()).answer
-    }
-
     /// Every overlapping pair between `self` and `other`, ascending.
     #[inline]
     fn collide(&self, other: &Self) -> Vec<(usize, usize)> {
@@ -173,9 +163,10 @@ pub trait SpatialIndex: RayCast<PointOf<Self>> + PointQuery<PointOf<Self>> {
     }
 }
 
-/// Implements [`RayCast`] and [`PointQuery`] for a structure generic over its primitive
-/// (`MyTree<P>`) through its [`SpatialIndex`] observed walks with the no-op observer `()`
-/// (whose calls compile away): how every structure here but the [`Bvh`] answers them, and
+/// Implements [`RayCast`], [`PointQuery`] and [`SpatialQuery`] for a structure generic over
+/// its primitive (`MyTree<P>`) through its [`SpatialIndex`] observed walks with the no-op
+/// observer `()` (whose calls compile away): how every structure here but the [`Bvh`]
+/// (whose first hit and closest point have walks of their own) answers them, and
 /// what a structure of your own can use once it implements [`SpatialIndex`]:
 /// `bvhlab::queries_by_observed_walks!(MyTree);`.
 #[macro_export]
@@ -204,6 +195,23 @@ macro_rules! queries_by_observed_walks {
                     .answer
                     .into_iter()
                     .next()
+            }
+        }
+
+        impl<P: $crate::Primitive> $crate::SpatialQuery<P::Point> for $structure<P> {
+            #[inline]
+            fn ray_all_hits(&self, ray: &$crate::Ray<P::Point>, t_max: f32) -> Vec<$crate::Hit> {
+                $crate::SpatialIndex::ray_all_hits_observed(self, ray, t_max, &mut ()).answer
+            }
+
+            #[inline]
+            fn k_nearest(&self, point: P::Point, k: usize) -> Vec<$crate::Nearest<P::Point>> {
+                $crate::SpatialIndex::k_nearest_observed(self, point, k, &mut ()).answer
+            }
+
+            #[inline]
+            fn range(&self, shape: &$crate::RangeShape<P::Point>) -> Vec<usize> {
+                $crate::SpatialIndex::range_observed(self, shape, &mut ()).answer
             }
         }
     };

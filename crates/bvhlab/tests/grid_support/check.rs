@@ -2,6 +2,7 @@
 //! exercise cell boundaries and split planes.
 
 use bvhlab::RayCast;
+use bvhlab::SpatialQuery;
 use bvhlab::structure::{BruteForce, PointOf, PrimitiveResult, RangeShape, Recorder};
 use bvhlab::{Aabb, BoundingVolume, Event, Primitive, Ray, SpatialIndex, Sphere, Vector};
 use rand::RngExt;

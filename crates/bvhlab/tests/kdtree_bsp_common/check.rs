@@ -1,6 +1,7 @@
 //! Queries that hit the hard cases, and the check of every answer against brute force.
 
 use bvhlab::RayCast;
+use bvhlab::SpatialQuery;
 use bvhlab::structure::{BruteForce, Event, PrimitiveResult, RangeShape, Recorder};
 use bvhlab::volume::BoundingVolume;
 use bvhlab::{Aabb, Hit, Nearest, Primitive, Ray, SpatialIndex, Sphere, Vector};

@@ -110,10 +110,10 @@
 //! | [`ray_first_hit`](RayCast::ray_first_hit) | `walk/fast_ray.rs`, a walk of its own |
 //! | [`ray_any_hit_observed`](SpatialIndex::ray_any_hit_observed) | `walk/ray.rs` (`any_hit`) |
 //! | [`ray_any_hit`](RayCast::ray_any_hit) | `walk/fast_ray.rs`, the first-hit walk stopping at the first hit |
-//! | [`ray_all_hits_observed`](SpatialIndex::ray_all_hits_observed), [`ray_all_hits`](SpatialIndex::ray_all_hits) | `walk/ray.rs` (`all_hits`) |
+//! | [`ray_all_hits_observed`](SpatialIndex::ray_all_hits_observed), [`ray_all_hits`](SpatialQuery::ray_all_hits) | `walk/ray.rs` (`all_hits`) |
 //! | [`closest_point`](PointQuery::closest_point), [`checked_closest_point`](PointQuery::checked_closest_point) | `walk/fast_nearest.rs`, a walk of its own |
-//! | [`k_nearest_observed`](SpatialIndex::k_nearest_observed), [`k_nearest`](SpatialIndex::k_nearest) (for every `k`, 1 too) | `walk/nearest.rs` |
-//! | [`range_observed`](SpatialIndex::range_observed), [`range`](SpatialIndex::range) | `walk/range.rs` |
+//! | [`k_nearest_observed`](SpatialIndex::k_nearest_observed), [`k_nearest`](SpatialQuery::k_nearest) (for every `k`, 1 too) | `walk/nearest.rs` |
+//! | [`range_observed`](SpatialIndex::range_observed), [`range`](SpatialQuery::range) | `walk/range.rs` |
 //! | [`collide_observed`](SpatialIndex::collide_observed), [`collide`](SpatialIndex::collide) | `walk/collide.rs` |
 //! | [`lecture_intersect_observed`](Bvh::lecture_intersect_observed), [`lecture_intersect`](Bvh::lecture_intersect) | `walk/lecture.rs` (`Intersect`) |
 //! | [`lecture_min_distance_observed`](Bvh::lecture_min_distance_observed), [`lecture_min_distance_pruned_observed`](Bvh::lecture_min_distance_pruned_observed) and their plain forms | `walk/lecture.rs` (`MinDistance`) |
@@ -170,7 +170,8 @@ pub use volume::{NodeVolume, PreparedRange, PreparedRay, SLACK, TINY};
 pub use wide::{Bvh4, Bvh4Node, WIDTH};
 
 use super::{
-    Hit, Nearest, Observer, PointOf, RangeShape, SpatialIndex, Stats, Traced, ValidationError,
+    Hit, Nearest, Observer, PointOf, RangeShape, SpatialIndex, SpatialQuery, Stats, Traced,
+    ValidationError,
 };
 use crate::structure::query::{placed, placed_all_traced, placed_traced};
 use crate::volume::{Aabb, Obb, Sphere};
@@ -334,6 +335,28 @@ where
     #[inline]
     fn ray_any_hit(&self, ray: &Ray<P::Point>, t_max: f32) -> Option<Hit> {
         placed(self.any_hit_fast(ray, t_max), &self.prims, ray)
+    }
+}
+
+/// The observed walks with the no-op observer `()`, whose calls compile away.
+impl<B, P> SpatialQuery<P::Point> for Bvh<B, P>
+where
+    B: NodeVolume<Point = P::Point>,
+    P: Primitive,
+{
+    #[inline]
+    fn ray_all_hits(&self, ray: &Ray<P::Point>, t_max: f32) -> Vec<Hit> {
+        self.ray_all_hits_observed(ray, t_max, &mut ()).answer
+    }
+
+    #[inline]
+    fn k_nearest(&self, point: P::Point, k: usize) -> Vec<Nearest<P::Point>> {
+        self.k_nearest_observed(point, k, &mut ()).answer
+    }
+
+    #[inline]
+    fn range(&self, shape: &RangeShape<P::Point>) -> Vec<usize> {
+        self.range_observed(shape, &mut ()).answer
     }
 }
 

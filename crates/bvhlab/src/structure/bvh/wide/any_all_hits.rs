@@ -54,7 +54,7 @@ impl<P: Primitive> Bvh4<P> {
 
     /// Every primitive the ray hits with `0 <= t <= t_max`, once each, sorted by `t`, then
     /// index (none for a NaN `t_max`): what the binary tree's
-    /// [`ray_all_hits`](crate::structure::SpatialIndex::ray_all_hits) answers, bit for bit.
+    /// [`ray_all_hits`](crate::SpatialQuery::ray_all_hits) answers, bit for bit.
     pub fn ray_all_hits(&self, ray: &Ray<P::Point>, t_max: f32) -> Vec<Hit> {
         let mut hits = Vec::new();
         if self.nodes.is_empty() || t_max.is_nan() {

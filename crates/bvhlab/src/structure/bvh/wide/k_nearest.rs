@@ -24,7 +24,7 @@ use crate::{Primitive, Vector};
 impl<P: Primitive> Bvh4<P> {
     /// The `k` primitives nearest to `point`, nearest first, ties by the lower index (none
     /// for `k = 0` or a non-finite point; all of them when `k` exceeds the count): what the
-    /// binary tree's [`k_nearest`](crate::structure::SpatialIndex::k_nearest) answers, bit
+    /// binary tree's [`k_nearest`](crate::SpatialQuery::k_nearest) answers, bit
     /// for bit. For `k = 1`, [`closest_point`](Self::closest_point) gives the same answer
     /// faster.
     pub fn k_nearest(&self, point: P::Point, k: usize) -> Vec<Nearest<P::Point>> {

@@ -13,12 +13,14 @@
 //! - `refit.rs`: [`Bvh4::refit`] after the primitives moved, and the SAH cost it reports.
 //! - `validate.rs`: [`Bvh4::validate`], the invariants (every box inside its parent's).
 //!
-//! The wide tree answers what its callers ask most, without the lab's events: it does not
-//! implement [`SpatialIndex`](crate::structure::SpatialIndex), whose `_observed` forms
-//! report every node by its index and whose event grammar is written for binary nodes (a
-//! wide node's leaf lanes are no nodes at all), and it keeps no copy of the primitives in
-//! input order. Its queries are inherent methods with the trait's names and answers; the
-//! lab steps through the binary tree.
+//! The wide tree answers what its callers ask most, without the lab's events: it implements
+//! [`RayCast`](crate::RayCast), [`PointQuery`](crate::PointQuery) and
+//! [`SpatialQuery`](crate::SpatialQuery), the traits code that takes any structure is written
+//! against (`query_traits.rs`), but not [`SpatialIndex`](crate::structure::SpatialIndex),
+//! whose `_observed` forms report every node by its index and whose event grammar is written
+//! for binary nodes (a wide node's leaf lanes are no nodes at all), and it keeps no copy of
+//! the primitives in input order. Its queries are also inherent methods with the traits'
+//! names and answers; the lab steps through the binary tree.
 
 mod any_all_hits;
 #[cfg(feature = "parallel")]

@@ -73,7 +73,7 @@ fn coords<V: Vector>(point: V) -> [f32; 3] {
 
 impl<P: Primitive> Bvh4<P> {
     /// The primitives that share a point with `shape`, by input index, ascending: what the
-    /// binary tree's [`range`](crate::structure::SpatialIndex::range) answers. An empty
+    /// binary tree's [`range`](crate::SpatialQuery::range) answers. An empty
     /// box or ball (a NaN or negative radius) holds nothing.
     pub fn range(&self, shape: &RangeShape<P::Point>) -> Vec<usize> {
         let test = match shape {
