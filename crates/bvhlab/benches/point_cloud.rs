@@ -7,7 +7,8 @@
 //! A second group is a newcomer's case (issue 33): balls over the same 200k points, each of
 //! radius 0.165 wholly inside the cube (centres in `[r, 1 - r]^3`), so that each holds
 //! about 3,770 points (4/3 π r³ × 200k = 3,763); [`Bvh4::range`] beside a plain scan of
-//! every point with the same test, and beside a count of squared distances.
+//! every point with the same test, and beside a count of squared distances; and
+//! [`Bvh4::range_count`], which counts without the list.
 //!
 //! Run: `cargo bench -p bvhlab --bench point_cloud` (the balls alone: `-- "large balls"`).
 
@@ -112,6 +113,14 @@ fn large_balls(c: &mut Criterion) {
             balls
                 .iter()
                 .map(|ball| wide.range(black_box(ball)).len())
+                .sum::<usize>()
+        });
+    });
+    group.bench_function("range count 4-wide", |b| {
+        b.iter(|| {
+            balls
+                .iter()
+                .map(|ball| wide.range_count(black_box(ball)))
                 .sum::<usize>()
         });
     });
