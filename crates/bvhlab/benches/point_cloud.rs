@@ -4,14 +4,20 @@
 //! the octree (their defaults too): their builds and their closest points. Throughput is
 //! per point (per query).
 //!
-//! Run: `cargo bench -p bvhlab --bench point_cloud`.
+//! A second group is a newcomer's case (issue 33): balls over the same 200k points, each of
+//! radius 0.165 wholly inside the cube (centres in `[r, 1 - r]^3`), so that each holds
+//! about 3,770 points (4/3 π r³ × 200k = 3,763); [`Bvh4::range`] beside a plain scan of
+//! every point with the same test, and beside a count of squared distances; and
+//! [`Bvh4::range_count`], which counts without the list.
+//!
+//! Run: `cargo bench -p bvhlab --bench point_cloud` (the balls alone: `-- "large balls"`).
 
 use std::hint::black_box;
 
 use bvhlab::glam::Vec3;
 use bvhlab::prelude::*;
 use bvhlab::structure::kdtree::KdTree;
-use bvhlab::{Grid, Orthtree};
+use bvhlab::{Grid, Orthtree, RangeShape, Sphere};
 use criterion::measurement::WallTime;
 use criterion::{BenchmarkGroup, Criterion, Throughput, criterion_group, criterion_main};
 use rand::{RngExt, SeedableRng};
@@ -74,5 +80,88 @@ fn point_cloud(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, point_cloud);
+/// The radius of the large balls: 3,770 of 200k uniform points in the unit cube.
+const LARGE_RADIUS: f32 = 0.165;
+
+/// `n` centres of large balls, each ball wholly inside the unit cube.
+fn inner_centres(n: usize, seed: u64) -> Vec<Vec3> {
+    let r = LARGE_RADIUS;
+    cube_points(n, seed)
+        .into_iter()
+        .map(|p| Vec3::splat(r) + p * (1.0 - 2.0 * r))
+        .collect()
+}
+
+/// Range queries with large balls (issue 33): the 4-wide tree against a plain scan.
+fn large_balls(c: &mut Criterion) {
+    let points = cube_points(200_000, 5);
+    let balls: Vec<RangeShape<Vec3>> = inner_centres(200, 7)
+        .into_iter()
+        .map(|centre| RangeShape::Ball(Sphere::new(centre, LARGE_RADIUS)))
+        .collect();
+    let wide = Bvh4::build(&points);
+    let found: usize = balls.iter().map(|ball| wide.range(ball).len()).sum();
+    eprintln!(
+        "large balls: {:.0} points per ball",
+        found as f64 / balls.len() as f64
+    );
+    let mut group = c.benchmark_group("large balls 200k");
+    group.sample_size(10);
+    group.throughput(Throughput::Elements(balls.len() as u64));
+    group.bench_function("range 4-wide", |b| {
+        b.iter(|| {
+            balls
+                .iter()
+                .map(|ball| wide.range(black_box(ball)).len())
+                .sum::<usize>()
+        });
+    });
+    group.bench_function("range count 4-wide", |b| {
+        b.iter(|| {
+            balls
+                .iter()
+                .map(|ball| wide.range_count(black_box(ball)))
+                .sum::<usize>()
+        });
+    });
+    group.bench_function("plain scan", |b| {
+        b.iter(|| {
+            balls
+                .iter()
+                .map(|ball| {
+                    let ball = black_box(ball);
+                    let found: Vec<usize> = points
+                        .iter()
+                        .enumerate()
+                        .filter(|(_, p)| ball.overlaps_primitive(*p))
+                        .map(|(i, _)| i)
+                        .collect();
+                    found.len()
+                })
+                .sum::<usize>()
+        });
+    });
+    // What a newcomer writes first: a count of squared distances, which the compiler turns
+    // into vector instructions (it may differ from the exact test by a point on the surface).
+    group.bench_function("plain scan, squared count", |b| {
+        b.iter(|| {
+            balls
+                .iter()
+                .map(|ball| {
+                    let RangeShape::Ball(s) = black_box(ball) else {
+                        return 0;
+                    };
+                    let r2 = s.radius * s.radius;
+                    points
+                        .iter()
+                        .filter(|p| p.distance_squared(s.center) <= r2)
+                        .count()
+                })
+                .sum::<usize>()
+        });
+    });
+    group.finish();
+}
+
+criterion_group!(benches, point_cloud, large_balls);
 criterion_main!(benches);

@@ -12,6 +12,7 @@ mod overlap_common;
 mod batch_queries;
 mod bsp;
 mod bvh4_queries;
+mod bvh4_range_whole_nodes;
 mod bvh_build;
 mod bvh_build_job;
 mod bvh_degenerate;

@@ -194,7 +194,10 @@ impl Triangle3 {
     ///
     /// Voronoi-region method of Ericson, "Real-Time Collision Detection", §5.1.5: find which
     /// vertex, edge or face region `p` projects into using barycentric tests. A degenerate
-    /// triangle falls back to the nearest of its three edges.
+    /// triangle falls back to the nearest of its three edges: an edge's region is taken only
+    /// when its parameter's denominator is positive, which for `d1 >= 0 >= d3` (and the like)
+    /// fails only when the edge has length 0 (its two ends one point: `0 / 0` was a NaN
+    /// point, so brute force and every tree found such a triangle at a NaN distance).
     pub fn project_point(&self, p: Vec3) -> Vec3 {
         // In f64: at scales of 1e-20 the f32 dot products below would be subnormal and lose
         // the region decisions; products of f32 differences are (nearly) exact in f64.
@@ -215,7 +218,7 @@ impl Triangle3 {
             return self.b;
         }
         let vc = d1 * d4 - d3 * d2;
-        if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+        if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 && d1 - d3 > 0.0 {
             return (a + ab * (d1 / (d1 - d3))).as_vec3();
         }
         let cp = p - c;
@@ -224,11 +227,11 @@ impl Triangle3 {
             return self.c;
         }
         let vb = d5 * d2 - d1 * d6;
-        if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+        if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 && d2 - d6 > 0.0 {
             return (a + ac * (d2 / (d2 - d6))).as_vec3();
         }
         let va = d3 * d6 - d5 * d4;
-        if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
+        if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 && (d4 - d3) + (d5 - d6) > 0.0 {
             return (b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)))).as_vec3();
         }
         let sum = va + vb + vc;
@@ -340,6 +343,41 @@ mod tests {
         assert_eq!(tri().ray_hit(&up), Some(1.0));
         let away = Ray3::new(Vec3::new(0.2, 0.2, 1.0), Vec3::Z).expect("ray");
         assert_eq!(tri().ray_hit(&away), None);
+    }
+
+    #[test]
+    fn a_repeated_vertex_projects_onto_the_other_edge() {
+        // Each corner repeated in turn: the triangle is the segment from it to the third
+        // corner, and every point projects onto that segment, never to NaN.
+        let (p, q) = (Vec3::new(-3.0, 4.0, 3.0), Vec3::new(-4.0, 5.0, 2.0));
+        let query = Vec3::new(-2.167_75, 6.843_661, -0.916_667);
+        let on_segment = Segment3Like(p, q).project(query);
+        for t in [
+            Triangle3::new(p, p, q),
+            Triangle3::new(p, q, p),
+            Triangle3::new(q, p, p),
+        ] {
+            for point in [query, p, q, (p + q) * 0.5, Vec3::ZERO, p * 2.0 - q] {
+                let got = t.project_point(point);
+                assert!(got.is_finite(), "{t:?} projects {point} to {got}");
+                let want = Segment3Like(p, q).project(point);
+                assert!(
+                    (got - want).length() < 1e-5,
+                    "{t:?}: {point} to {got}, not {want}"
+                );
+            }
+            assert!((t.project_point(query) - on_segment).length() < 1e-5);
+        }
+    }
+
+    /// A segment in 3D, for the expected projections.
+    struct Segment3Like(Vec3, Vec3);
+
+    impl Segment3Like {
+        fn project(&self, p: Vec3) -> Vec3 {
+            let e = self.1 - self.0;
+            self.0 + e * ((p - self.0).dot(e) / e.length_squared()).clamp(0.0, 1.0)
+        }
     }
 
     #[test]

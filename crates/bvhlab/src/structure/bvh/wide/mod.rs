@@ -8,7 +8,9 @@
 //!   limit stays `t_max`.
 //! - `nearest.rs`: [`Bvh4::closest_point`], four distance bounds at once.
 //! - `k_nearest.rs`: [`Bvh4::k_nearest`], the same walk keeping the k best.
-//! - `range.rs`: [`Bvh4::range`], boxes and balls.
+//! - `range.rs`: [`Bvh4::range`], [`Bvh4::range_count`] and [`Bvh4::range_for_each`],
+//!   boxes and balls, one walk that takes lanes wholly inside the region whole.
+//! - `range_lanes.rs`: the range walk's lane tests (may touch the region, lies inside it).
 //! - `stack.rs`: the stack the nearest-first walks share, sized per tree.
 //! - `refit.rs`: [`Bvh4::refit`] after the primitives moved, and the SAH cost it reports.
 //! - `validate.rs`: [`Bvh4::validate`], the invariants (every box inside its parent's).
@@ -30,6 +32,7 @@ mod layout;
 mod nearest;
 mod query_traits;
 mod range;
+mod range_lanes;
 mod ray;
 mod refit;
 mod stack;
