@@ -34,6 +34,7 @@ pub mod brute_force;
 pub mod bsp;
 pub mod bvh;
 pub mod grid;
+mod index_sort;
 pub mod kdtree;
 pub mod mailbox;
 pub mod observe;

@@ -15,6 +15,7 @@ use super::range_lanes::{LaneMasks, LaneTest};
 use super::stack::{MIDDLE_DEPTH, SHALLOW_DEPTH, capacity};
 use crate::structure::RangeShape;
 use crate::structure::bvh::MAX_DEPTH;
+use crate::structure::index_sort::sort_indices;
 use crate::{Primitive, Vector};
 
 /// The mark of a waiting node wholly inside the region, in its index's top bit. A node is
@@ -111,7 +112,7 @@ impl<P: Primitive> Bvh4<P> {
     pub fn range(&self, shape: &RangeShape<P::Point>) -> Vec<usize> {
         let mut found = Vec::new();
         self.range_into(shape, &mut found);
-        found.sort_unstable();
+        sort_indices(&mut found);
         found
     }
 
