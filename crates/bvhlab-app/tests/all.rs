@@ -33,3 +33,4 @@ mod tree_diagram;
 mod ui;
 mod view3d;
 mod view3d_gains;
+mod view3d_keys;

@@ -22,7 +22,7 @@ use egui::Key;
 use egui_kittest::Harness;
 
 /// The 3D half of the lab in the harness.
-fn three<'a>(h: &'a Harness<'_, LabApp>) -> &'a Lab3d {
+pub(crate) fn three<'a>(h: &'a Harness<'_, LabApp>) -> &'a Lab3d {
     h.state().lab().three()
 }
 
@@ -45,7 +45,7 @@ fn until_built(h: &mut Harness<'_, LabApp>) -> usize {
 }
 
 /// The lab switched to 3D, its default mesh loaded and built.
-fn lab_3d() -> Harness<'static, LabApp> {
+pub(crate) fn lab_3d() -> Harness<'static, LabApp> {
     let mut h = lab();
     click(&mut h, "3D: meshes");
     assert_eq!(h.state().lab().dimension(), Dimension::Three);
@@ -54,7 +54,7 @@ fn lab_3d() -> Harness<'static, LabApp> {
 }
 
 /// The 3D view's area on screen.
-fn view_rect(h: &Harness<'_, LabApp>) -> egui::Rect {
+pub(crate) fn view_rect(h: &Harness<'_, LabApp>) -> egui::Rect {
     h.state().ui.view3d.rect
 }
 
@@ -335,7 +335,7 @@ fn drag_3d(h: &mut Harness<'_, LabApp>, from: egui::Pos2, to: egui::Pos2) {
 }
 
 /// Where a handle is on screen.
-fn handle_on_screen(h: &Harness<'_, LabApp>, which: Handle) -> egui::Pos2 {
+pub(crate) fn handle_on_screen(h: &Harness<'_, LabApp>, which: Handle) -> egui::Pos2 {
     let lab = three(h);
     let rect = view_rect(h);
     let (_, at) = handles(lab, rect)

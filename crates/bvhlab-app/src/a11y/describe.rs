@@ -4,8 +4,8 @@
 //! the ray or point and its answer, the counters, the step shown and what it did, the lesson's
 //! task, Predict's question: the report's text, [`Report::text`]). The screen reader finds it
 //! as a described drawing (`role="application"` in the page, since its keys go to the lab: in
-//! 2D, R and the arrows move the ray; in 3D, the arrows orbit and Enter casts; `.` and `,`
-//! step).
+//! 2D, R and the arrows move the ray; in 3D, the arrows orbit, Enter casts, and R and the
+//! arrows move the ray; `.` and `,` step).
 
 use egui::accesskit::Role;
 
@@ -24,8 +24,10 @@ pub fn drawing(ctx: &egui::Context, id: egui::Id, dimension: Dimension, report: 
         }
         Dimension::Three => {
             "the arrow keys turn the camera, + and - zoom, Enter casts a ray through the middle \
-             of the view or puts the query point where it meets the mesh (the numbers are in \
-             the Ray and point panel), H shows the heat map"
+             of the view or puts the query point where it meets the mesh; R picks the ray's \
+             start, its point or the query point and the arrow keys move it along the \
+             camera's axes, R again gives them back to the camera (the numbers are in the Ray \
+             and point panel); H shows the heat map"
         }
     };
     // Only on a frame that builds the accessibility tree (the closure runs only then).

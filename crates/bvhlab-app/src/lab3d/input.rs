@@ -165,8 +165,9 @@ pub(super) fn click(
     }
 }
 
-/// What a drag of `delta` points on `handle` does to the ray or the point.
-fn drag_handle(
+/// What a drag of `delta` points on `handle` does to the ray or the point (also what the
+/// arrow keys do to a handle R picked: `keys.rs`).
+pub(super) fn drag_handle(
     lab: &Lab3d,
     rect: Rect,
     handle: Handle,

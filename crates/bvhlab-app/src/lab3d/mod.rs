@@ -39,6 +39,8 @@ pub const BACKGROUND: Color32 = Color32::from_rgb(24, 26, 32);
 pub struct ViewState {
     /// The gizmo handle being dragged, if any.
     pub dragging: Option<input::Handle>,
+    /// The handle the arrow keys move, picked with R (`None`: they turn the camera).
+    pub key_handle: Option<input::Handle>,
     /// The view's area on screen (both halves when comparing), set each frame.
     pub rect: egui::Rect,
     /// The traversal-cost heat map: its tracing and images.
@@ -57,6 +59,7 @@ impl Default for ViewState {
     fn default() -> Self {
         Self {
             dragging: None,
+            key_handle: None,
             rect: egui::Rect::NOTHING,
             heat: heat::HeatMap::default(),
             drawn: Vec::new(),
@@ -183,6 +186,7 @@ pub fn view(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
     // A clicked ray runs straight into the screen: the inset shows it from the side.
     cx.ui.view3d.side = side_view::side_view(lab, lab.half.lane_at(0), halves[0], &painter);
     keys::draw_aim(ui, &painter, halves[0], response.id);
+    keys::draw_picked(&painter, lab, halves[0], cx.ui.view3d.key_handle);
 }
 
 /// The leaf of lane `index`'s structure holding the triangle under `pointer` in the view of
