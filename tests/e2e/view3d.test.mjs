@@ -120,6 +120,23 @@ async function runOne({ renderer, heat, args }) {
     await shoot(page, `3d-${renderer}-step3.png`);
     await page.keyboard.press('End');
 
+    // The keyboard moves the clicked ray (issue 32): R picks its start, the arrows move it
+    // along the camera's axes; R, R gives the arrows back to the camera.
+    await page.keyboard.press('KeyR');
+    for (const key of ['ArrowRight', 'ArrowRight', 'ArrowUp']) await page.keyboard.press(key);
+    const { report: nudged } = await waitForReport(
+      page,
+      (r) => r.message?.includes("the ray's start e") && r.three?.ray?.join() !== hit.three.ray?.join(),
+      QUERY_TIMEOUT_MS,
+      "the ray's start moved by the arrow keys",
+    );
+    check(nudged.three.ray.slice(3).join() === hit.three.ray.slice(3).join(), 'the direction is kept');
+    check(nudged.three.agrees === true, 'the moved ray is answered as brute force answers it');
+    await shoot(page, `3d-${renderer}-keys.png`);
+    await page.keyboard.press('KeyR');
+    await page.keyboard.press('KeyR');
+    await waitForReport(page, (r) => r.message?.includes('turn the camera'), QUERY_TIMEOUT_MS, 'the arrows back to the camera');
+
     // The heat map (H).
     await page.keyboard.press('KeyH');
     const { report: mapped } = await waitForReport(

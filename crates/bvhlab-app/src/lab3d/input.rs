@@ -176,9 +176,13 @@ pub(super) fn drag_handle(
 ) -> Option<Action3d> {
     let camera = lab.camera;
     let basis = camera.basis();
-    // World units per point at a given point's depth.
+    // World units per point at a given point's depth; at least a tenth of the way to the
+    // target's, so that a ray's start at the eye (a clicked ray's) moves when the arrow keys
+    // move it (the gizmo's length has the same floor).
     let per_point = |at: Vec3| {
-        let depth = (at - camera.eye()).dot(basis.forward).max(1e-6);
+        let depth = (at - camera.eye())
+            .dot(basis.forward)
+            .max(camera.distance * 0.1);
         2.0 * depth * (camera.fov_y * 0.5).tan() / size.y.max(1.0)
     };
     let in_plane = |at: Vec3| at + (basis.right * delta.x - basis.up * delta.y) * per_point(at);

@@ -107,7 +107,7 @@ pub(super) fn handle_keys(cx: &mut Cx<'_>, ui: &egui::Ui, rect: Rect, view: egui
             i.modifiers.shift,
             zoom,
             i.key_pressed(Key::Enter),
-            i.key_pressed(Key::R),
+            i.num_presses(Key::R),
         )
     });
     let tool = cx.lab.three().tool;
@@ -120,7 +120,7 @@ pub(super) fn handle_keys(cx: &mut Cx<'_>, ui: &egui::Ui, rect: Rect, view: egui
     {
         cx.ui.view3d.key_handle = None;
     }
-    if cycle {
+    for _ in 0..cycle {
         pick_next(cx, rect);
     }
     let lab = cx.lab.three();
@@ -186,27 +186,52 @@ pub(super) fn draw_picked(
         return;
     };
     let size = Vec2::new(rect.width(), rect.height());
-    let Some(at) = handles(lab, rect)
+    let on_screen = handles(lab, rect)
         .into_iter()
         .find(|(h, _)| *h == picked)
         .and_then(|(_, at)| lab.camera.project(at, size))
-    else {
+        .map(|at| rect.min + egui::vec2(at.x, at.y))
+        .filter(|&at| rect.shrink(4.0).contains(at));
+    let Some(centre) = on_screen else {
+        // A clicked ray starts at the eye: its start is behind or beside the view until it
+        // moves or the camera turns. Say so where the frame would be missing.
+        let words = format!(
+            "The arrows move {}, outside the view: turn or zoom out (-) to see it.",
+            handle_name(picked)
+        );
+        label(
+            painter,
+            rect.left_bottom() + egui::vec2(8.0, -8.0),
+            egui::Align2::LEFT_BOTTOM,
+            words,
+        );
         return;
     };
-    let centre = rect.min + egui::vec2(at.x, at.y);
     let stroke = egui::Stroke::new(2.0, crate::paint::colors::SELECTED);
     let halo = egui::Stroke::new(4.0, egui::Color32::BLACK);
     let square = Rect::from_center_size(centre, egui::vec2(18.0, 18.0));
     for s in [halo, stroke] {
         painter.rect_stroke(square, 2.0, s, egui::StrokeKind::Outside);
     }
-    painter.text(
+    let words = format!("arrows move {}", handle_name(picked));
+    label(
+        painter,
         centre + egui::vec2(14.0, -14.0),
         egui::Align2::LEFT_BOTTOM,
-        format!("arrows move {}", handle_name(picked)),
-        egui::FontId::proportional(12.0),
+        words,
+    );
+}
+
+/// Words in the selection's yellow on a dark backing, readable over the mesh and the lines.
+fn label(painter: &egui::Painter, at: egui::Pos2, align: egui::Align2, words: String) {
+    let galley = painter.layout_no_wrap(
+        words,
+        egui::FontId::proportional(13.0),
         crate::paint::colors::SELECTED,
     );
+    let rect = align.anchor_size(at, galley.size());
+    painter.rect_filled(rect.expand(3.0), 3.0, egui::Color32::from_black_alpha(200));
+    painter.galley(rect.min, galley, crate::paint::colors::SELECTED);
 }
 
 /// Marks the middle of the view at `rect` while the view has the keyboard focus: where Enter
