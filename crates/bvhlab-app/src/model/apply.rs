@@ -77,6 +77,9 @@ impl Lab {
             }
             Action::Tick { seconds, build_ms } => {
                 if !self.tick(seconds, build_ms) {
+                    // A 3D structure can be made and built within one tick, which counts as
+                    // no change; its answer may still reach the lesson's goal.
+                    self.check_goal();
                     return Ok(());
                 }
                 Note::Keep
@@ -134,6 +137,8 @@ impl Lab {
             }
             Dimension::Three => {
                 let loading = self.three.pending.is_some();
+                let building = |lab: &Self| lab.three.half.lanes().any(|l| l.job.is_some());
+                let was_building = building(self);
                 self.three.tick(seconds, build_ms);
                 let len = self.three.half.steps();
                 let moved = self.three.half.playback.advance(seconds, len);
@@ -141,8 +146,9 @@ impl Lab {
                     self.three.refresh(BuildBudget::None);
                 }
                 // A finished build changes no saved state but is news: count it too, so that
-                // a reply waiting for it goes out.
-                loading || moved || self.three.half.lanes().any(|l| l.job.is_some())
+                // a reply waiting for it goes out and a lesson's goal that its answer reaches
+                // is checked (a build that ends in this tick counts: it was building).
+                loading || moved || was_building || building(self)
             }
         }
     }
