@@ -9,12 +9,31 @@ use bvhlab::{Bvh4, Grid, KdTree, PointQuery, RayCast};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
-fn random_vec3(rng: &mut ChaCha8Rng, extent: f32) -> Vec3 {
+pub(crate) fn random_vec3(rng: &mut ChaCha8Rng, extent: f32) -> Vec3 {
     Vec3::new(
         rng.random_range(-extent..extent),
         rng.random_range(-extent..extent),
         rng.random_range(-extent..extent),
     )
+}
+
+/// `n` triangles of up to 1.5 a side scattered over a 20-wide cube, and `m` rays from a
+/// 28-wide cube through points of a 16-wide one: a scene where about half the rays hit.
+pub(crate) fn triangles_and_rays(
+    rng: &mut ChaCha8Rng,
+    n: usize,
+    m: usize,
+) -> (Vec<Triangle3>, Vec<Ray3>) {
+    let tris = (0..n)
+        .map(|_| {
+            let a = random_vec3(rng, 10.0);
+            Triangle3::new(a, a + random_vec3(rng, 1.5), a + random_vec3(rng, 1.5))
+        })
+        .collect();
+    let rays = (0..m)
+        .map(|_| Ray3::through(random_vec3(rng, 14.0), random_vec3(rng, 8.0)).expect("a valid ray"))
+        .collect();
+    (tris, rays)
 }
 
 fn check<Q: RayCast<Vec3> + PointQuery<Vec3> + Sync>(
@@ -42,22 +61,7 @@ fn check<Q: RayCast<Vec3> + PointQuery<Vec3> + Sync>(
 #[test]
 fn batch_queries_answer_as_one_query_at_a_time() {
     let mut rng = ChaCha8Rng::seed_from_u64(26);
-    let tris: Vec<Triangle3> = (0..4000)
-        .map(|_| {
-            let a = random_vec3(&mut rng, 10.0);
-            Triangle3::new(
-                a,
-                a + random_vec3(&mut rng, 1.5),
-                a + random_vec3(&mut rng, 1.5),
-            )
-        })
-        .collect();
-    let rays: Vec<Ray3> = (0..3000)
-        .map(|_| {
-            Ray3::through(random_vec3(&mut rng, 14.0), random_vec3(&mut rng, 8.0))
-                .expect("a valid ray")
-        })
-        .collect();
+    let (tris, rays) = triangles_and_rays(&mut rng, 4000, 3000);
     // More points than the batch answers in the given order (4096), so the Morton-ordered
     // path runs; some repeated, to check ties in the sort keep every answer in its place.
     let mut points: Vec<Vec3> = (0..9000).map(|_| random_vec3(&mut rng, 12.0)).collect();
@@ -94,22 +98,7 @@ impl RayCast<Vec3> for Recording<'_> {
 #[test]
 fn with_threads_runs_batches_and_builds_on_that_many_threads_with_the_same_answers() {
     let mut rng = ChaCha8Rng::seed_from_u64(33);
-    let tris: Vec<Triangle3> = (0..2000)
-        .map(|_| {
-            let a = random_vec3(&mut rng, 10.0);
-            Triangle3::new(
-                a,
-                a + random_vec3(&mut rng, 1.5),
-                a + random_vec3(&mut rng, 1.5),
-            )
-        })
-        .collect();
-    let rays: Vec<Ray3> = (0..5000)
-        .map(|_| {
-            Ray3::through(random_vec3(&mut rng, 14.0), random_vec3(&mut rng, 8.0))
-                .expect("a valid ray")
-        })
-        .collect();
+    let (tris, rays) = triangles_and_rays(&mut rng, 2000, 5000);
     let tree = Bvh4::build(&tris);
     let want = tree.ray_first_hits(&rays, f32::INFINITY);
     for threads in [1, 3] {

@@ -9,7 +9,10 @@ use bvhlab::structure::{BruteForce, RangeShape};
 use bvhlab::{BspTree, Grid, KdTree, Orthtree};
 use rand::RngExt;
 
-use crate::newcomer::{random_vec3, rng};
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+
+use crate::batch_queries::{random_vec3, triangles_and_rays};
 
 /// Everything a program might ask of "some structure", through the trait alone.
 fn answers(index: &impl SpatialQuery<Vec3>, rays: &[Ray3], points: &[Vec3]) -> Vec<String> {
@@ -31,23 +34,8 @@ fn answers(index: &impl SpatialQuery<Vec3>, rays: &[Ray3], points: &[Vec3]) -> V
 
 #[test]
 fn every_structure_and_bvh4_answer_spatial_query_as_brute_force() {
-    let mut rng = rng(61);
-    let tris: Vec<Triangle3> = (0..1500)
-        .map(|_| {
-            let a = random_vec3(&mut rng, 10.0);
-            Triangle3::new(
-                a,
-                a + random_vec3(&mut rng, 1.5),
-                a + random_vec3(&mut rng, 1.5),
-            )
-        })
-        .collect();
-    let rays: Vec<Ray3> = (0..150)
-        .map(|_| {
-            Ray3::through(random_vec3(&mut rng, 14.0), random_vec3(&mut rng, 8.0))
-                .expect("distinct points")
-        })
-        .collect();
+    let mut rng = ChaCha8Rng::seed_from_u64(61);
+    let (tris, rays) = triangles_and_rays(&mut rng, 1500, 150);
     let points: Vec<Vec3> = (0..100)
         .map(|_| {
             let extent = rng.random_range(5.0..13.0);
