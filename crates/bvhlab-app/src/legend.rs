@@ -24,8 +24,8 @@ fn marks(tested: &'static str) -> [(Color32, &'static str); 7] {
     ]
 }
 
-/// The entries for the half shown: the marks, then (2D) the split planes and the bounding
-/// volumes drawn, then what Predict asks about.
+/// The entries for the half shown: the marks, then (2D) the split planes, the bounding
+/// volumes drawn (and in 3D the brush and the slabs), then what Predict asks about.
 pub fn entries(cx: &Cx<'_>) -> Vec<(Color32, &'static str)> {
     let mut all = match cx.lab.dimension() {
         Dimension::Two => {
@@ -33,7 +33,12 @@ pub fn entries(cx: &Cx<'_>) -> Vec<(Color32, &'static str)> {
             all.extend(crate::lab2d::legend_volumes(cx.lab.two()));
             all
         }
-        Dimension::Three => marks("tested triangle").to_vec(),
+        Dimension::Three => {
+            let mut all = marks("tested triangle").to_vec();
+            all.extend(crate::lab3d::volumes::legend(cx.lab.three()));
+            all.extend(crate::lab3d::sat::legend(cx.lab.three()));
+            all
+        }
     };
     // What Predict's question is about is lit while it waits.
     if !cx.lab.predict_about().is_empty() {

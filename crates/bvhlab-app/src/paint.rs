@@ -44,6 +44,8 @@ pub mod colors {
     pub const SLAB_X: Color32 = Color32::from_rgb(255, 100, 100);
     /// The y slab.
     pub const SLAB_Y: Color32 = Color32::from_rgb(110, 160, 255);
+    /// The z slab (3D).
+    pub const SLAB_Z: Color32 = Color32::from_rgb(120, 230, 120);
     /// What Predict's question waiting is about: pale yellow, always beside its number and a
     /// question mark ("node 3?"), so that it is not told by colour alone.
     pub const ASKED: Color32 = Color32::from_rgb(255, 250, 130);

@@ -166,7 +166,14 @@ fn check_3d(h: &Harness<'_, LabApp>, q: &PredictQuestion) -> Vec<String> {
     let event = lane.recorded().expect("a recording").events[q.step];
     let (nodes, prim) = deciding(q, event, snapshot.cells.last().map(|c| c.cell));
     let rect = Rect::from_min_size(Pos2::ZERO, egui::vec2(800.0, 600.0));
-    let drawn = bvhlab_app::lab3d::draw::draw(three, 0, rect, false, None, &lab.predict_about());
+    let drawn = bvhlab_app::lab3d::draw::draw(
+        three,
+        0,
+        rect,
+        false,
+        bvhlab_app::lab3d::draw::Lit::default(),
+        &lab.predict_about(),
+    );
     let asked = bvhlab_app::lab3d::draw::rgba(colors::ASKED, 1.0);
     let structure = lane.current(three.revision()).expect("built");
     let mut wrong = Vec::new();
@@ -417,7 +424,7 @@ fn step_zero_with_predict_on_draws_the_query_the_structure_and_what_is_asked() {
                         0,
                         rect,
                         false,
-                        None,
+                        bvhlab_app::lab3d::draw::Lit::default(),
                         &lab.predict_about(),
                     );
                     let query = bvhlab_app::lab3d::draw::rgba(colors::QUERY, 1.0);

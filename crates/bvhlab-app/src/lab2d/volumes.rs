@@ -11,19 +11,6 @@ use crate::model::lab2d::Lab2d;
 use crate::model::volumes::{ObbPair, SlabExplain};
 use crate::paint::{WorldPainter, colors};
 
-/// Whether the volume `kind` is switched on in the bounding volumes panel.
-fn toggled(lab: &Lab2d, kind: FitKind) -> bool {
-    let t = &lab.volumes;
-    match kind {
-        FitKind::SphereCentroid => t.centroid,
-        FitKind::SphereRitter => t.ritter,
-        FitKind::SphereWelzl => t.welzl,
-        FitKind::Aabb => t.aabb,
-        FitKind::Obb => t.obb,
-        FitKind::ConvexHull => t.hull,
-    }
-}
-
 /// The bounding volumes the canvas draws (for its legend): those switched on, while the
 /// volumes are shown and there is something to fit them to.
 pub(super) fn shown_volumes(lab: &Lab2d) -> Vec<FitKind> {
@@ -32,7 +19,7 @@ pub(super) fn shown_volumes(lab: &Lab2d) -> Vec<FitKind> {
     }
     FitKind::ALL
         .into_iter()
-        .filter(|&k| toggled(lab, k))
+        .filter(|&k| lab.volumes.has(k))
         .collect()
 }
 
@@ -42,7 +29,7 @@ pub(super) fn draw_volumes(lab: &Lab2d, highlight: Option<FitKind>, wp: &mut Wor
     let Some(fits) = lab.fits() else { return };
     for kind in FitKind::ALL {
         let lit = highlight == Some(kind);
-        if !(lit || lab.display.volumes && toggled(lab, kind)) {
+        if !(lit || lab.display.volumes && lab.volumes.has(kind)) {
             continue;
         }
         let color = colors::volume(kind);

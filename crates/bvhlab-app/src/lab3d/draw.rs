@@ -87,18 +87,30 @@ impl Draw3d {
 /// The most triangles of a hovered node's subtree lit.
 const HOVER_TRIANGLE_CAP: usize = 200_000;
 
-/// The draw list of lane `index` (1: the comparison) in a view of `rect`, with node
-/// `hovered` of this lane (in the tree diagram or on the mesh) lit, and in the main lane
-/// what Predict's question is `asked` about.
+/// What the pointer is on outside the view that the view lights: a node of this lane (in
+/// the tree diagram or on the mesh) and a row of the §2 table.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Lit {
+    /// The node hovered.
+    pub node: Option<NodeId>,
+    /// The bounding volume whose row is hovered.
+    pub volume: Option<bvhlab::FitKind>,
+}
+
+/// The draw list of lane `index` (1: the comparison) in a view of `rect`, with what is
+/// `lit` lit, and in the main lane what Predict's question is `asked` about.
 pub fn draw(
     lab: &Lab3d,
     index: usize,
     rect: egui::Rect,
     gizmo_shown: bool,
-    hovered: Option<NodeId>,
+    lit: Lit,
     asked: &About,
 ) -> Draw3d {
     let mut d = Draw3d::default();
+    // The volumes are the mesh's, not a structure's: drawn while one builds or is none.
+    super::volumes::draw_volumes(lab, lit.volume, &mut d);
+    super::sat::draw_sat(lab, &mut d);
     let task = lab.half.task;
     let lane = lab.half.lane_at(index);
     let (Some(mesh), Some(built)) = (&lab.mesh, lane.current(lab.revision())) else {
@@ -124,7 +136,7 @@ pub fn draw(
     if index == 0 {
         asked_about(built, asked, &mut d);
     }
-    if let Some(node) = hovered {
+    if let Some(node) = lit.node {
         hovered_node(built, node, &mut d);
     }
     if gizmo_shown {

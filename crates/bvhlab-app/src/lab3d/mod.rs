@@ -16,7 +16,9 @@ pub mod input;
 mod keys;
 pub mod nodes;
 pub mod picture;
+pub mod sat;
 pub mod side_view;
+pub mod volumes;
 pub mod wire;
 
 use std::sync::Arc;
@@ -123,7 +125,11 @@ pub fn view(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
             .hovered
             .filter(|(lane, _)| *lane == i)
             .map(|(_, node)| node);
-        let drawn = draw::draw(lab, i, *half, i == 0, hovered, &asked);
+        let lit = draw::Lit {
+            node: hovered,
+            volume: cx.ui.canvas.volume_hover,
+        };
+        let drawn = draw::draw(lab, i, *half, i == 0, lit, &asked);
         if cx.ui.render_state.is_some() {
             let id = ui.make_persistent_id(("3d view", i));
             gpu::paint_3d(ui, *half, id, frame(lab, mesh.clone(), &drawn));

@@ -41,7 +41,7 @@ pub fn picture(lab: &Lab3d, asked: &crate::model::predict::About, rect: Rect) ->
         let projector = Projector::new(&lab.camera, *half);
         mesh(lab, &projector, &mut shapes);
         overlay(
-            &draw::draw(lab, i, *half, i == 0, None, asked),
+            &draw::draw(lab, i, *half, i == 0, draw::Lit::default(), asked),
             &projector,
             &mut shapes,
         );

@@ -12,6 +12,7 @@ use super::heat::HeatSettings;
 use super::lab2d::{Display, RayHandles};
 use super::lab3d::Display3d;
 use super::mesh::MeshSource;
+use super::obb_pair3d::ObbPair3;
 use super::orbit_camera::OrbitCamera;
 use super::presets::Preset;
 use super::question::{Task, Variant};
@@ -21,6 +22,7 @@ use super::scene::ShapeKind;
 use super::structures::BuildSettings;
 use super::tools::{Tool, Tool3d};
 use super::volumes::{ObbPair, VolumeToggles};
+use super::volumes3d::Volumes3d;
 
 /// A change of the lab.
 #[derive(Clone, Debug, PartialEq)]
@@ -132,6 +134,11 @@ pub enum Action3d {
     /// Starts or stops the motion of a mesh that moves (the twisting torus): while on, each
     /// frame moves it on and its structures follow.
     Animate(bool),
+    /// The bounding volumes of the mesh or a part of it (lecture §2): shown or not, which,
+    /// fitted to which triangles, and the slab test.
+    SetVolumes(Volumes3d),
+    /// The two boxes of the separating-axis test and the axis looked at; `None` ends it.
+    SetObbPair(Option<ObbPair3>),
 }
 
 /// A change of the structures, question or playback of the half shown.

@@ -16,10 +16,12 @@ use super::heat::HeatSettings;
 use super::lane::BuildBudget;
 use super::mesh::{self, Mesh3d, MeshSource};
 use super::motion::{self, Motion};
+use super::obb_pair3d::ObbPair3;
 use super::orbit_camera::OrbitCamera;
 use super::refit::UpdateMode;
 use super::structures::{BuildSettings, StructureKind};
 use super::tools::Tool3d;
+use super::volumes3d::{PartFits, Volumes3d};
 
 /// The built-in mesh the 3D view opens with.
 pub const DEFAULT_MESH: &str = "bunny";
@@ -108,6 +110,12 @@ pub struct Lab3d {
     pub half: Half<Triangle3>,
     /// The motion of a mesh that moves ([`motion`]).
     pub motion: Motion,
+    /// The bounding volumes of the mesh or a part of it (lecture §2).
+    pub volumes: Volumes3d,
+    /// The part's triangles and fits, while the volumes are shown.
+    part_fits: PartFits,
+    /// The two boxes of the separating-axis test, while it is on.
+    pub obb_pair: Option<ObbPair3>,
     revisions: u64,
 }
 
@@ -135,6 +143,9 @@ impl Default for Lab3d {
                 0.1,
             ),
             motion: Motion::default(),
+            volumes: Volumes3d::default(),
+            part_fits: PartFits::default(),
+            obb_pair: None,
             revisions: 0,
         }
     }
@@ -195,10 +206,22 @@ impl Lab3d {
         self.refresh(BuildBudget::Millis(build_ms));
     }
 
-    /// Brings the recordings up to date (builds advance only in [`Lab3d::tick`]).
+    /// The part the volumes are fitted to, with its fits: `None` while they are not shown
+    /// (or no mesh has loaded).
+    pub fn part_fits(&self) -> Option<&PartFits> {
+        (self.volumes.shown && self.mesh.is_some()).then_some(&self.part_fits)
+    }
+
+    /// Brings the recordings up to date (builds advance only in [`Lab3d::tick`]), and the
+    /// volumes' fits while they are shown.
     pub(super) fn refresh(&mut self, budget: BuildBudget) {
         let Some(mesh) = &self.mesh else { return };
         let revision = mesh.revision;
+        if self.volumes.shown {
+            let (part, point, radius) = (self.volumes.part, self.point, self.half.radius);
+            self.part_fits
+                .refresh(&mesh.mesh, revision, part, point, radius);
+        }
         let triangles = mesh.mesh.triangles();
         self.half
             .refresh(triangles, revision, self.ray, self.point, budget);
@@ -330,6 +353,16 @@ impl Lab3d {
             Action3d::SetDisplay(display) => self.display = display,
             Action3d::SetHeat(heat) => self.heat = heat,
             Action3d::Animate(on) => self.motion.on = on,
+            Action3d::SetVolumes(volumes) => self.volumes = volumes,
+            Action3d::SetObbPair(pair) => {
+                if pair.is_some_and(|p| !p.is_valid()) {
+                    return Err(
+                        "each box needs a finite centre, turn and half extents (none negative)"
+                            .to_owned(),
+                    );
+                }
+                self.obb_pair = pair;
+            }
         }
         Ok(Note::Keep)
     }

@@ -45,6 +45,7 @@ pub mod lane_name;
 pub mod lesson;
 pub mod mesh;
 pub mod motion;
+pub mod obb_pair3d;
 pub mod orbit_camera;
 pub mod outcome;
 pub mod playback;
@@ -60,6 +61,7 @@ pub mod snapshot;
 pub mod structures;
 pub mod tools;
 pub mod volumes;
+pub mod volumes3d;
 
 pub use action::{Action, Action2d, Action3d, HalfAction, PlaybackAction};
 pub use dimension::Dimension;

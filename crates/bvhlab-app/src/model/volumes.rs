@@ -1,54 +1,66 @@
 //! Lecture §2 as data: the bounding volumes of the selected shapes, the slab test of a ray
 //! against their AABB (with the naive formula beside the core's, for "when does this fail?"),
-//! the ray-sphere quadratic, and two oriented boxes under the separating-axis test.
+//! the ray-sphere quadratic, and two oriented boxes under the separating-axis test. The fits
+//! and the slab test serve both halves: a 2D selection of shapes and a 3D part of a mesh.
 
 use bvhlab::glam::Vec2;
 use bvhlab::volume::AxisTest;
-use bvhlab::{Aabb2, ConvexHull2, FitReport, Obb2, PcaFit, Ray2, Sphere2};
+use bvhlab::{Aabb, ConvexHull, FitKind, FitReport, Obb, Obb2, PcaFit, Ray, Sphere, Vector};
 
 /// Every bounding volume of a point set, fitted by the core.
 #[derive(Clone, Debug)]
-pub struct Fits {
+pub struct Fits<V: Vector = Vec2> {
     /// The lecture's sphere: centroid and the farthest vertex.
-    pub centroid: Sphere2,
+    pub centroid: Sphere<V>,
     /// Ritter's sphere.
-    pub ritter: Sphere2,
+    pub ritter: Sphere<V>,
     /// Welzl's minimal sphere.
-    pub welzl: Sphere2,
+    pub welzl: Sphere<V>,
     /// The axis-aligned box.
-    pub aabb: Aabb2,
+    pub aabb: Aabb<V>,
     /// The PCA box.
-    pub obb: Obb2,
+    pub obb: Obb<V>,
     /// Where the PCA box's axes came from (mean, covariance, variances).
-    pub pca: PcaFit<Vec2>,
+    pub pca: PcaFit<V>,
     /// The convex hull.
-    pub hull: ConvexHull2,
-    /// Areas, perimeters and tightness (hull area over each volume's area).
+    pub hull: ConvexHull<V>,
+    /// Sizes and tightness (hull measure over each volume's measure): areas and perimeters
+    /// in 2D, volumes and surface areas in 3D.
     pub report: FitReport,
 }
 
-impl Fits {
+impl<V: Vector> Fits<V> {
     /// The fits of `points`, or `None` when there are none.
-    pub fn of(points: &[Vec2]) -> Option<Self> {
+    pub fn of(points: &[V]) -> Option<Self> {
         if points.is_empty() {
             return None;
         }
-        let (obb, pca) = Obb2::pca_fit_detailed(points);
+        let (obb, pca) = Obb::pca_fit_detailed(points);
         Some(Self {
-            centroid: Sphere2::centroid_fit(points),
-            ritter: Sphere2::ritter_fit(points),
-            welzl: Sphere2::welzl_fit(points),
-            aabb: Aabb2::from_points(points),
+            centroid: Sphere::centroid_fit(points),
+            ritter: Sphere::ritter_fit(points),
+            welzl: Sphere::welzl_fit(points),
+            aabb: Aabb::from_points(points),
             obb,
             pca,
-            hull: ConvexHull2::from_points(points),
+            hull: ConvexHull::from_points(points),
             report: FitReport::for_points(points),
         })
     }
 
+    /// The sphere fitted the way `kind` names (`None` for the other kinds).
+    pub fn sphere(&self, kind: FitKind) -> Option<&Sphere<V>> {
+        match kind {
+            FitKind::SphereCentroid => Some(&self.centroid),
+            FitKind::SphereRitter => Some(&self.ritter),
+            FitKind::SphereWelzl => Some(&self.welzl),
+            _ => None,
+        }
+    }
+
     /// The box around the volumes `shown` (the spheres and the OBB reach beyond the shape's
     /// own box): what "Fit view" frames besides the scene.
-    pub fn bounds(&self, shown: &VolumeToggles) -> Aabb2 {
+    pub fn bounds(&self, shown: &VolumeToggles) -> Aabb<V> {
         let mut points = vec![self.aabb.min, self.aabb.max];
         for (on, sphere) in [
             (shown.centroid, &self.centroid),
@@ -56,19 +68,15 @@ impl Fits {
             (shown.welzl, &self.welzl),
         ] {
             if on {
-                points.push(sphere.center - Vec2::splat(sphere.radius));
-                points.push(sphere.center + Vec2::splat(sphere.radius));
+                points.push(sphere.center - V::splat(sphere.radius));
+                points.push(sphere.center + V::splat(sphere.radius));
             }
         }
         if shown.obb {
-            let [u, v] = self.obb.axes;
-            let (hu, hv) = (u * self.obb.half_extents.x, v * self.obb.half_extents.y);
-            for (a, b) in [(1.0, 1.0), (1.0, -1.0), (-1.0, 1.0), (-1.0, -1.0)] {
-                points.push(self.obb.center + hu * a + hv * b);
-            }
+            points.extend(self.obb.corners());
         }
         points.retain(|p| p.is_finite());
-        Aabb2::from_points(&points)
+        Aabb::from_points(&points)
     }
 }
 
@@ -88,6 +96,20 @@ pub struct VolumeToggles {
     pub obb: bool,
     /// The convex hull.
     pub hull: bool,
+}
+
+impl VolumeToggles {
+    /// Whether the volume `kind` is switched on.
+    pub fn has(&self, kind: FitKind) -> bool {
+        match kind {
+            FitKind::SphereCentroid => self.centroid,
+            FitKind::SphereRitter => self.ritter,
+            FitKind::SphereWelzl => self.welzl,
+            FitKind::Aabb => self.aabb,
+            FitKind::Obb => self.obb,
+            FitKind::ConvexHull => self.hull,
+        }
+    }
 }
 
 impl Default for VolumeToggles {
@@ -143,10 +165,10 @@ impl SlabAxis {
 }
 
 /// The slab test of a ray against a box, axis by axis.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct SlabExplain {
-    /// x, then y.
-    pub axes: [SlabAxis; 2],
+    /// x, then y (then z in 3D).
+    pub axes: Vec<SlabAxis>,
     /// `max(t_xmin, t_ymin)`, clamped below by 0 (the ray starts at `t = 0`).
     pub t_enter: f32,
     /// `min(t_xmax, t_ymax)`.
@@ -157,23 +179,24 @@ impl SlabExplain {
     /// The slab test of `ray` against `aabb`, from the core's [`Aabb::slab_test`].
     ///
     /// [`Aabb::slab_test`]: bvhlab::Aabb::slab_test
-    pub fn new(aabb: &Aabb2, ray: &Ray2) -> Self {
+    pub fn new<V: Vector>(aabb: &Aabb<V>, ray: &Ray<V>) -> Self {
         let slab = aabb.slab_test(ray);
-        let axes = [0, 1].map(|i| {
-            let (lo, hi, e, d) = (aabb.min[i], aabb.max[i], ray.origin()[i], ray.dir()[i]);
+        let axes = (0..V::DIM).map(|i| {
+            let (lo, hi) = (aabb.min.coord(i), aabb.max.coord(i));
+            let (e, d) = (ray.origin().coord(i), ray.dir().coord(i));
             let (a, b) = ((lo - e) / d, (hi - e) / d);
             SlabAxis {
                 lo,
                 hi,
                 origin: e,
                 dir: d,
-                t_min: slab.t_near[i],
-                t_max: slab.t_far[i],
+                t_min: slab.t_near.coord(i),
+                t_max: slab.t_far.coord(i),
                 naive: if d >= 0.0 { (a, b) } else { (b, a) },
             }
         });
         Self {
-            axes,
+            axes: axes.collect(),
             t_enter: slab.t_enter(),
             t_exit: slab.t_exit(),
         }
@@ -191,8 +214,11 @@ impl SlabExplain {
         if self.axes.iter().any(SlabAxis::naive_fails) {
             return None;
         }
-        let enter = self.axes[0].naive.0.max(self.axes[1].naive.0).max(0.0);
-        let exit = self.axes[0].naive.1.min(self.axes[1].naive.1);
+        let enter = self.axes.iter().fold(0.0_f32, |t, a| t.max(a.naive.0));
+        let exit = self
+            .axes
+            .iter()
+            .fold(f32::INFINITY, |t, a| t.min(a.naive.1));
         Some(enter <= exit)
     }
 }
@@ -259,6 +285,8 @@ impl ObbPair {
 
 #[cfg(test)]
 mod tests {
+    use bvhlab::{Aabb2, Ray2};
+
     use super::*;
 
     #[test]
@@ -307,6 +335,6 @@ mod tests {
         ];
         let fits = Fits::of(&pts).expect("non-empty");
         assert!(fits.welzl.radius <= fits.centroid.radius + 1e-5);
-        assert!(Fits::of(&[]).is_none());
+        assert!(Fits::<Vec2>::of(&[]).is_none());
     }
 }

@@ -4,7 +4,7 @@
 //! the lecture's order.
 //!
 //! - The controls (left): [`lesson`] first, then [`scene`], [`volumes`], [`structure`], [`queries`], [`save_share`]
-//!   in 2D; [`mesh`] (with [`motion`] for a mesh that moves), [`structure`], [`ray_point`], [`heat`], [`save_share`] in 3D.
+//!   in 2D; [`mesh`] (with [`motion`] for a mesh that moves), [`volumes3d`], [`structure`], [`ray_point`], [`heat`], [`save_share`] in 3D.
 //! - "Step through" (right): [`step_through`] (task, comparison, transport, export, and each
 //!   lane's recording at the step: [`recording`], with a build's split in [`split`]).
 //! - Below the view: the tree diagrams ([`tree`]); at the bottom, the status line
@@ -22,6 +22,7 @@ pub mod queries;
 pub mod ray_point;
 pub mod recording;
 pub mod refit;
+pub mod sat3d;
 pub mod save_share;
 pub mod scene;
 pub mod split;
@@ -30,6 +31,7 @@ pub mod step_through;
 pub mod structure;
 pub mod tree;
 pub mod volumes;
+pub mod volumes3d;
 
 use egui::{CollapsingHeader, Color32, RichText};
 
@@ -54,8 +56,9 @@ pub const PANELS_2D: [&dyn Panel; 5] = [
 ];
 
 /// The 3D controls.
-pub const PANELS_3D: [&dyn Panel; 5] = [
+pub const PANELS_3D: [&dyn Panel; 6] = [
     &mesh::Mesh,
+    &volumes3d::Volumes3dPanel,
     &structure::Structure3d,
     &ray_point::RayPoint,
     &heat::Heat,
@@ -74,9 +77,9 @@ pub fn controls(cx: &mut Cx<'_>, ui: &mut egui::Ui, with_question: bool) {
         .id_salt("controls")
         .show(ui, |ui| {
             dimension_switch(cx, ui);
-            let panels = match cx.lab.dimension() {
-                Dimension::Two => PANELS_2D,
-                Dimension::Three => PANELS_3D,
+            let panels: &[&dyn Panel] = match cx.lab.dimension() {
+                Dimension::Two => &PANELS_2D,
+                Dimension::Three => &PANELS_3D,
             };
             for panel in panels {
                 CollapsingHeader::new(panel.title())

@@ -5,16 +5,20 @@
 //! and its failure cases; two OBBs under the separating-axis test.
 
 use bvhlab::volume::AxisSource;
-use bvhlab::{Aabb2, FitKind};
+use bvhlab::{Aabb2, FitKind, FitReport, Ray, Vector};
 use egui::{Grid, RichText, Sense, vec2};
 
 use super::Panel;
+use crate::lab3d::volumes::SLAB_COLORS;
 use crate::model::Action2d;
 use crate::model::lab2d::RayHandles;
 use crate::model::tools::Tool;
 use crate::model::volumes::{Fits, SlabExplain};
 use crate::paint::colors;
 use crate::ui_state::Cx;
+
+/// The coordinate axes' names, in the slab table and its sentences.
+const AXIS_NAMES: [&str; 3] = ["x", "y", "z"];
 
 /// The bounding volumes panel (lecture §2).
 pub struct Volumes;
@@ -53,7 +57,7 @@ fn volumes_section(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
         ui.label("Draw or select a shape to fit volumes to it.");
         return;
     };
-    fits_table(cx, fits, ui);
+    fits_table(cx, &fits.report, ["area", "perimeter"], ui);
     let pca = &fits.pca;
     let [c0, c1] = pca.covariance;
     ui.label(format!(
@@ -79,7 +83,7 @@ fn volumes_section(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
 }
 
 /// A table row's first cell: a small square in the colour `kind` is drawn in, then `name`.
-fn named_swatch(ui: &mut egui::Ui, kind: FitKind, name: &str) -> egui::Response {
+pub(super) fn named_swatch(ui: &mut egui::Ui, kind: FitKind, name: &str) -> egui::Response {
     ui.horizontal(|ui| {
         let (rect, _) = ui.allocate_exact_size(vec2(12.0, 12.0), Sense::hover());
         // Outlined in the text's colour: the white of Welzl's sphere vanished on the light
@@ -98,7 +102,7 @@ fn named_swatch(ui: &mut egui::Ui, kind: FitKind, name: &str) -> egui::Response 
 }
 
 /// Lights `kind` on the canvas while the pointer is over its row (`cells`, the row's cells).
-fn hover_row(cx: &mut Cx<'_>, ui: &egui::Ui, kind: FitKind, cells: &[egui::Response]) {
+pub(super) fn hover_row(cx: &mut Cx<'_>, ui: &egui::Ui, kind: FitKind, cells: &[egui::Response]) {
     let row = cells
         .iter()
         .map(|r| r.rect)
@@ -109,18 +113,19 @@ fn hover_row(cx: &mut Cx<'_>, ui: &egui::Ui, kind: FitKind, cells: &[egui::Respo
     }
 }
 
-/// Each volume's size and tightness, a row per volume, with its colour on the canvas.
-fn fits_table(cx: &mut Cx<'_>, fits: &Fits, ui: &mut egui::Ui) {
+/// Each volume's size and tightness, a row per volume, with its colour in the view; `sizes`
+/// names the measure and the boundary's ("area" and "perimeter" in 2D).
+pub(super) fn fits_table(cx: &mut Cx<'_>, report: &FitReport, sizes: [&str; 2], ui: &mut egui::Ui) {
     Grid::new("fits")
         .striped(true)
         .show(ui, |ui| {
-            ui.strong("volume");
-            ui.strong("area");
-            ui.strong("perimeter");
+            ui.strong("bounding volume");
+            ui.strong(sizes[0]);
+            ui.strong(sizes[1]);
             ui.strong("tightness");
             ui.end_row();
             for kind in FitKind::ALL {
-                if let Some(m) = fits.report.get(kind) {
+                if let Some(m) = report.get(kind) {
                     let cells = [
                         named_swatch(ui, kind, kind.label()),
                         ui.label(format!("{:.3}", m.measure)),
@@ -136,10 +141,11 @@ fn fits_table(cx: &mut Cx<'_>, fits: &Fits, ui: &mut egui::Ui) {
             }
         })
         .response
-        .on_hover_text(
-            "Tightness: the convex hull's area over the volume's area. Point at a row to \
-             light its volume on the canvas.",
-        );
+        .on_hover_text(format!(
+            "Tightness: the convex hull's {0} over the volume's {0}. Point at a row to light \
+             its volume in the view.",
+            sizes[0]
+        ));
 }
 
 /// Lecture §2, bounding sphere: the ray against each sphere, as the quadratic
@@ -163,6 +169,16 @@ fn ray_sphere(cx: &mut Cx<'_>, fits: &Fits, ui: &mut egui::Ui) {
         }
         Some(Ok(ray)) => ray,
     };
+    ray_sphere_table(cx, fits, &ray, ui);
+}
+
+/// Each sphere's quadratic for `ray`, its roots and what they mean, a row per sphere.
+pub(super) fn ray_sphere_table<V: Vector>(
+    cx: &mut Cx<'_>,
+    fits: &Fits<V>,
+    ray: &Ray<V>,
+    ui: &mut egui::Ui,
+) {
     let spheres = [
         (FitKind::SphereCentroid, &fits.centroid, "centroid"),
         (FitKind::SphereRitter, &fits.ritter, "Ritter"),
@@ -177,7 +193,7 @@ fn ray_sphere(cx: &mut Cx<'_>, fits: &Fits, ui: &mut egui::Ui) {
                 }
                 ui.end_row();
                 for (kind, sphere, name) in spheres {
-                    let q = sphere.ray_quadratic(&ray);
+                    let q = sphere.ray_quadratic(ray);
                     let roots = q.roots();
                     let cells = [
                         named_swatch(ui, kind, name),
@@ -338,7 +354,8 @@ fn interval(lo: f32, hi: f32) -> String {
     format!("[{lo:.2}, {hi:.2}]")
 }
 
-fn slab_details(s: &SlabExplain, ui: &mut egui::Ui) {
+/// The slab test's table, axis by axis (x, y and in 3D z), and what it says in words.
+pub(super) fn slab_details(s: &SlabExplain, ui: &mut egui::Ui) {
     let verdict = |hits: bool| if hits { "hit" } else { "miss" };
     egui::ScrollArea::horizontal()
         .id_salt("slabs scroll")
@@ -348,11 +365,8 @@ fn slab_details(s: &SlabExplain, ui: &mut egui::Ui) {
                     ui.strong(h);
                 }
                 ui.end_row();
-                for (name, a, color) in [
-                    ("x", &s.axes[0], colors::SLAB_X),
-                    ("y", &s.axes[1], colors::SLAB_Y),
-                ] {
-                    ui.label(RichText::new(name).color(color));
+                for ((name, a), color) in AXIS_NAMES.iter().zip(&s.axes).zip(SLAB_COLORS) {
+                    ui.label(RichText::new(*name).color(color));
                     for v in [a.lo, a.hi, a.origin, a.dir] {
                         ui.label(format!("{v:.3}"));
                     }
@@ -377,7 +391,7 @@ fn slab_details(s: &SlabExplain, ui: &mut egui::Ui) {
                 ui.end_row();
             });
         });
-    for (name, a) in [("x", &s.axes[0]), ("y", &s.axes[1])] {
+    for (name, a) in AXIS_NAMES.iter().zip(&s.axes) {
         if a.parallel() {
             ui.label(format!(
                 "{name}_d = 0: the ray is parallel to the {name} slab. 1/0 = ±inf keeps the test right{}",
@@ -396,10 +410,17 @@ fn slab_details(s: &SlabExplain, ui: &mut egui::Ui) {
             ));
         }
     }
+    let names = &AXIS_NAMES[..s.axes.len()];
+    let listed = |end: &str| {
+        let terms: Vec<String> = names.iter().map(|n| format!("t_{n}{end}")).collect();
+        terms.join(", ")
+    };
     ui.label(format!(
-        "max(t_xmin, t_ymin) = {:.3} {} min(t_xmax, t_ymax) = {:.3}: {}.",
+        "max({}) = {:.3} {} min({}) = {:.3}: {}.",
+        listed("min"),
         s.t_enter,
         if s.hits() { "≤" } else { ">" },
+        listed("max"),
         s.t_exit,
         verdict(s.hits()),
     ));
