@@ -3,9 +3,9 @@
 //! core's `Obb3::overlaps` on seeded boxes, stepping through the axes, and a box put on a
 //! brushed part's PCA box. Driven through the panel and the model's actions.
 
+use bvhlab::Obb3;
 use bvhlab::glam::Vec3;
 use bvhlab::volume::AxisSource;
-use bvhlab::Obb3;
 use bvhlab_app::LabApp;
 use bvhlab_app::lab3d::sat::{SHADOW_A, SHADOW_B};
 use bvhlab_app::model::Action3d;

@@ -67,8 +67,11 @@ fn assert_fits_are_the_cores(h: &Harness<'_, LabApp>, expected: &[Vec3]) {
 fn the_volumes_of_the_mesh_and_of_a_brushed_part_are_the_cores_fits() {
     let mut h = lab_3d();
     assert!(three(&h).part_fits().is_none(), "off until asked for");
+    assert!(three(&h).display.structure && three(&h).display.marks);
     click(&mut h, "Show the bounding volumes");
     settle(&mut h);
+    // §2 comes before the trees: their nodes and marks are put away, and come back after.
+    assert!(!three(&h).display.structure && !three(&h).display.marks);
     assert!(shows(&h, "surface area"), "the 3D table's sizes");
     let all: BTreeSet<usize> = (0..three(&h).triangles().len()).collect();
     assert_eq!(
@@ -82,6 +85,16 @@ fn the_volumes_of_the_mesh_and_of_a_brushed_part_are_the_cores_fits() {
     settle(&mut h);
     assert_eq!(three(&h).tool, Tool3d::Point);
     assert_eq!(three(&h).volumes.part, Part3d::Brush);
+    // The point the lab opens with lies beside the mesh: the brush starts at its closest
+    // point on the mesh, so it holds triangles at once.
+    let q = three(&h).point.expect("a point");
+    let on_mesh = three(&h)
+        .triangles()
+        .iter()
+        .map(|t| t.project_point(q).distance(q))
+        .fold(f32::INFINITY, f32::min);
+    assert!(on_mesh < 1e-4, "q is {on_mesh} off the mesh");
+    assert!(!three(&h).part_fits().expect("shown").triangles.is_empty());
     let mesh_size = three(&h).mesh.as_ref().expect("mesh").size();
     let triangles: Vec<Triangle3> = three(&h).triangles().to_vec();
     let brute = BruteForce::build(&triangles);
@@ -117,6 +130,10 @@ fn the_volumes_of_the_mesh_and_of_a_brushed_part_are_the_cores_fits() {
     settle(&mut h);
     assert!(three(&h).part_fits().expect("shown").fits.is_none());
     assert!(shows(&h, "No triangle lies within r of q"));
+    click(&mut h, "Show the bounding volumes");
+    settle(&mut h);
+    assert!(three(&h).part_fits().is_none());
+    assert!(three(&h).display.structure && three(&h).display.marks);
 }
 
 #[test]
@@ -222,4 +239,44 @@ fn pointing_at_a_row_lights_its_volume_in_the_view() {
         12,
         "drawn thick"
     );
+}
+
+#[test]
+fn the_volumes_and_the_two_boxes_come_back_from_a_file_and_a_bad_box_is_refused() {
+    use bvhlab_app::persist::{open_file, to_file};
+
+    let mut h = lab_3d();
+    click(&mut h, "Show the bounding volumes");
+    click(&mut h, "the brush (triangles within r of q)");
+    click(&mut h, "Separating-axis test of two OBBs (15 axes)");
+    settle(&mut h);
+    let mut pair = three(&h).obb_pair.expect("on");
+    pair.a.degrees = Vec3::new(12.5, -40.0, 7.25);
+    pair.step = 9;
+    act(&mut h, Action3d::SetObbPair(Some(pair)));
+    let (volumes, point) = (three(&h).volumes, three(&h).point);
+    let file = to_file(h.state().lab());
+
+    let mut fresh = lab_3d();
+    act(&mut fresh, open_file(&file).expect("the file opens"));
+    for _ in 0..20 {
+        fresh.step();
+    }
+    settle(&mut fresh);
+    assert_eq!(three(&fresh).volumes, volumes);
+    assert_eq!(three(&fresh).obb_pair, Some(pair));
+    assert_eq!(three(&fresh).point, point);
+    assert!(!three(&fresh).display.structure, "the trees put away, as when shown");
+    let part = |h: &Harness<'_, LabApp>| three(h).part_fits().map(|p| p.triangles.clone());
+    assert_eq!(part(&fresh), part(&h), "the same brushed part");
+
+    // A box with a negative half extent or a step past the 15th axis is refused whole.
+    let text = String::from_utf8(file).expect("JSON");
+    let step = text.replace("\"step\": 9\n", "\"step\": 15\n");
+    assert!(step != text, "the file holds the step");
+    let refused = open_file(step.as_bytes()).expect_err("refused");
+    assert!(refused.contains("0 to 14"), "{refused}");
+    let half = text.replacen("\"half\": [", "\"half\": [-", 1);
+    let refused = open_file(half.as_bytes()).expect_err("refused");
+    assert!(refused.contains("box A"), "{refused}");
 }

@@ -46,24 +46,31 @@ pub(super) fn draw_sat(lab: &Lab3d, d: &mut Draw3d) {
         return;
     };
     let axis = test.axis;
-    // The line lies beside both boxes, across from the camera's up, so the shadows do not
-    // fall on the boxes: a point on it at parameter s projects to s on the axis.
+    // The line runs just below both boxes (below as the camera sees it), so the shadows do
+    // not fall on the boxes: its point at parameter s projects to s on the axis.
     let mid = (a.center + b.center) * 0.5;
-    let reach =
-        a.half_extents.length() + b.half_extents.length() + a.center.distance(b.center) * 0.5;
     let up = lab.camera.basis().up;
     let across = (up - axis * up.dot(axis))
         .try_normalize()
         .unwrap_or_else(|| axis.any_orthonormal_vector());
-    let base = mid - axis * axis.dot(mid) - across * reach * 1.1;
+    let below = [&a, &b]
+        .iter()
+        .map(|o| (o.center - mid).dot(across).abs() + radius_along(o, across))
+        .fold(0.0_f32, f32::max);
+    let base = mid - axis * axis.dot(mid) - across * below * 1.15;
     let at = |s: f32| base + axis * s;
-    let centre = axis.dot(mid);
+    let (lo, hi) = (
+        test.interval_a.0.min(test.interval_b.0),
+        test.interval_a.1.max(test.interval_b.1),
+    );
+    let margin = (hi - lo) * 0.15;
     d.overlay.push(Segment {
-        a: at(centre - reach * 1.6),
-        b: at(centre + reach * 1.6),
+        a: at(lo - margin),
+        b: at(hi + margin),
         color: rgba(Color32::GRAY, 1.0),
         width: 1.5,
     });
+    let reach = below;
     for (obb, (lo, hi), shade, shift) in [
         (&a, test.interval_a, SHADOW_A, 0.03),
         (&b, test.interval_b, SHADOW_B, -0.03),
@@ -95,6 +102,15 @@ pub(super) fn draw_sat(lab: &Lab3d, d: &mut Draw3d) {
             });
         }
     }
+}
+
+/// Half the box's shadow on the unit vector `dir`.
+fn radius_along(obb: &Obb3, dir: Vec3) -> f32 {
+    obb.axes
+        .iter()
+        .zip(obb.half_extents.to_array())
+        .map(|(axis, half)| axis.dot(dir).abs() * half)
+        .sum()
 }
 
 /// The box's corner whose projection on `axis` is `end` (the nearest, for rounding).

@@ -94,7 +94,13 @@ pub(super) fn draw_volumes(lab: &Lab3d, highlight: Option<FitKind>, d: &mut Draw
             }
             FitKind::Aabb => wire::shape(&NodeShape::Aabb(fits.aabb), color, width, &mut d.overlay),
             FitKind::Obb => obb(fits, color, width, d),
-            FitKind::ConvexHull => hull(fits, color, if lit { 2.5 } else { 1.0 }, d),
+            // Faint: a mesh's hull has hundreds of edges.
+            FitKind::ConvexHull => hull(
+                fits,
+                rgba(colors::volume(kind), if lit { 0.95 } else { 0.4 }),
+                if lit { 2.5 } else { 1.0 },
+                d,
+            ),
         }
     }
     if lab.volumes.slab_test
@@ -158,7 +164,7 @@ fn slab_test(aabb: &Aabb3, ray: &Ray3, d: &mut Draw3d) {
         for plane in [a.lo, a.hi] {
             d.polygons.push(Polygon {
                 corners: face(aabb, axis, plane),
-                color: rgba(color, 0.12),
+                color: rgba(color, 0.08),
             });
         }
         for t in [a.t_min, a.t_max] {

@@ -21,7 +21,7 @@ use super::orbit_camera::OrbitCamera;
 use super::refit::UpdateMode;
 use super::structures::{BuildSettings, StructureKind};
 use super::tools::Tool3d;
-use super::volumes3d::{PartFits, Volumes3d};
+use super::volumes3d::{Part3d, PartFits, Volumes3d, closest_on, selected_triangles};
 
 /// The built-in mesh the 3D view opens with.
 pub const DEFAULT_MESH: &str = "bunny";
@@ -291,6 +291,28 @@ impl Lab3d {
         }
     }
 
+    /// The volumes' rules: while they are shown the structure's nodes and the query's marks
+    /// are not drawn (the lecture's §2 comes before any tree; the panel's switches show it
+    /// and can turn them back on), and come back when they are hidden. A brush chosen where
+    /// it would hold nothing starts at the query point's closest point on the mesh.
+    fn set_volumes(&mut self, volumes: Volumes3d) {
+        if volumes.shown != self.volumes.shown {
+            self.display.structure = !volumes.shown;
+            self.display.marks = !volumes.shown;
+        }
+        if volumes.part == Part3d::Brush
+            && self.volumes.part != Part3d::Brush
+            && let Some(mesh) = &self.mesh
+        {
+            let from = self.point.unwrap_or_else(|| mesh.bounds().center());
+            let radius = self.half.radius;
+            if selected_triangles(&mesh.mesh, Part3d::Brush, Some(from), radius).is_empty() {
+                self.point = closest_on(mesh.mesh.triangles(), from).or(self.point);
+            }
+        }
+        self.volumes = volumes;
+    }
+
     /// Carries out `action`, with the rules that go with it; what the status line says
     /// after it.
     ///
@@ -353,7 +375,7 @@ impl Lab3d {
             Action3d::SetDisplay(display) => self.display = display,
             Action3d::SetHeat(heat) => self.heat = heat,
             Action3d::Animate(on) => self.motion.on = on,
-            Action3d::SetVolumes(volumes) => self.volumes = volumes,
+            Action3d::SetVolumes(volumes) => self.set_volumes(volumes),
             Action3d::SetObbPair(pair) => {
                 if pair.is_some_and(|p| !p.is_valid()) {
                     return Err(

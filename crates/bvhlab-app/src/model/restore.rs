@@ -19,7 +19,9 @@ use super::question::{Task, Variant};
 use super::refit::UpdateMode;
 use super::scene::Scene;
 use super::structures::BuildSettings;
+use super::obb_pair3d::ObbPair3;
 use super::volumes::VolumeToggles;
+use super::volumes3d::Volumes3d;
 
 /// The question and playback of one half.
 #[derive(Clone, Debug, PartialEq)]
@@ -76,6 +78,10 @@ pub struct Restore3d {
     pub half: RestoreHalf,
     /// The camera, ray, point and radius to put back over the mesh once it has loaded.
     pub placement: Placement3d,
+    /// §2's volumes.
+    pub volumes: Volumes3d,
+    /// The two boxes of the separating-axis test, if it is on.
+    pub obb_pair: Option<ObbPair3>,
 }
 
 /// A whole state of the lab.
@@ -167,5 +173,12 @@ impl Restore3d {
         self.half.write(&mut lab.half);
         lab.placement = Some(self.placement);
         lab.pending = Some(self.mesh);
+        // As the volumes' rule has it: the trees' nodes are put away while they are shown.
+        if self.volumes.shown {
+            lab.display.structure = false;
+            lab.display.marks = false;
+        }
+        lab.volumes = self.volumes;
+        lab.obb_pair = self.obb_pair;
     }
 }

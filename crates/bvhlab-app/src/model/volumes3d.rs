@@ -4,7 +4,7 @@
 
 use bvhlab::glam::Vec3;
 use bvhlab::structure::RangeShape;
-use bvhlab::{Mesh, Sphere3};
+use bvhlab::{Mesh, Primitive, Sphere3, Triangle3};
 
 use super::volumes::{Fits, VolumeToggles};
 
@@ -59,6 +59,19 @@ pub fn selected_triangles(mesh: &Mesh, part: Part3d, point: Option<Vec3>, radius
                 .collect()
         }
     }
+}
+
+/// The point of `triangles` closest to `point` (by each triangle's own projection, as
+/// brute force answers); `None` for no finite triangle.
+pub fn closest_on(triangles: &[Triangle3], point: Vec3) -> Option<Vec3> {
+    triangles
+        .iter()
+        .filter(|t| t.has_finite_coordinates())
+        .map(|t| t.project_point(point))
+        .min_by(|p, q| {
+            p.distance_squared(point)
+                .total_cmp(&q.distance_squared(point))
+        })
 }
 
 /// The vertices of the triangles `selected`, each once (a vertex shared by six triangles

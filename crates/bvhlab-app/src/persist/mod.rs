@@ -32,6 +32,7 @@ mod restore;
 mod state;
 mod state3d;
 mod storage;
+mod volumes3d;
 
 #[cfg(feature = "gui")]
 pub use actions::{

@@ -1,7 +1,8 @@
 //! The 3D half's part of a [`SavedState`](super::SavedState): which half is shown, the mesh
 //! (a built-in by slug; a dropped file only by name, since its bytes can be hundreds of
 //! megabytes), the structure's settings (and the comparison's), the camera, the ray, the
-//! point, the radius, and the half's own task, k and playback. A file from before the halves
+//! point, the radius, the half's own task, k and playback, and §2's volumes and boxes
+//! ([`super::volumes3d`]). A file from before the halves
 //! kept their own question takes the 2D half's for both, as that lab did.
 //!
 //! A file mesh cannot come back by itself after a reload: the state keeps its name, the
@@ -21,6 +22,8 @@ use crate::model::{Dimension, Lab};
 
 use super::names::{Coord, TaskName, VariantName, shorten};
 use super::state::{PlaybackState, SettingsState};
+use super::volumes3d::{ObbPair3State, Volumes3dState};
+use crate::model::volumes3d::Volumes3d;
 
 /// A point or direction in 3D as stored: `[x, y, z]`.
 pub type StoredPoint3 = [Coord; 3];
@@ -61,6 +64,12 @@ pub struct ThreeState {
     /// Where the 3D half's playback is (absent: where the 2D half's is).
     #[serde(default)]
     pub playback: Option<PlaybackState>,
+    /// §2 in 3D: the volumes shown and what they are fitted to (absent: not shown).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub volumes: Option<Volumes3dState>,
+    /// The two boxes of the separating-axis test (absent: the test is off).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub obb_pair: Option<ObbPair3State>,
 }
 
 /// The mesh: `{"builtin": "bunny"}` or `{"file": "part.stl"}`.
@@ -171,6 +180,8 @@ impl ThreeState {
                 step: half.playback.step,
                 live: half.playback.at_end,
             }),
+            volumes: (lab.volumes != Volumes3d::default()).then(|| lab.volumes.into()),
+            obb_pair: lab.obb_pair.as_ref().map(Into::into),
         }
     }
 }
@@ -234,6 +245,7 @@ impl Checked3d {
             step: two.step,
             live: two.live,
         });
+        let obb_pair = state.obb_pair.map(|p| p.check()).transpose()?;
         let (mesh, note) = match &state.mesh {
             MeshState::File(name) => {
                 let name = shorten(name, MAX_NAME_CHARS);
@@ -272,6 +284,8 @@ impl Checked3d {
                     point,
                     radius,
                 },
+                volumes: state.volumes.map(Into::into).unwrap_or_default(),
+                obb_pair,
             },
             note,
         })
