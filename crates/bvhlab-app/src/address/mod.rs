@@ -13,11 +13,12 @@ pub mod words;
 
 use crate::model::Setup;
 use crate::model::presets::Preset;
+use crate::model::volumes3d::Part3d;
 use crate::persist::{STORAGE_KEY, SplitName, StructureName, TaskName, VariantName};
 pub use panels::{PanelsShown, PanelsShown as Panels, SideTab};
 
 /// The parameters the lab reads, with what each does (the README's table is this list).
-pub const PARAMETERS: [(&str, &str); 18] = [
+pub const PARAMETERS: [(&str, &str); 19] = [
     (
         "preset",
         "a 2D scene: one of the presets' slugs (kd-tree, quadtree, 10k, ...)",
@@ -57,7 +58,11 @@ pub const PARAMETERS: [(&str, &str); 18] = [
     ),
     (
         "obbs",
-        "the separating-axis demo's two boxes (2D): for each, centre x,y, half width, half height, angle in degrees (10 numbers)",
+        "the separating-axis test's two boxes: in 2D for each centre x,y, half width, half height, angle in degrees (10 numbers); in 3D centre x,y,z, half extents x,y,z, turn about x,y,z in degrees (18 numbers)",
+    ),
+    (
+        "volumes",
+        "shows the 3D view's bounding volumes: mesh (of the whole mesh) or brush (of the triangles within the radius of the query point)",
     ),
     (
         "step",
@@ -116,8 +121,10 @@ pub struct StartParams {
     pub point: Option<Vec<f32>>,
     /// `polygon=`: a polygon's corners, 2 numbers each.
     pub polygon: Option<Vec<f32>>,
-    /// `obbs=`: the two boxes of the separating-axis demo, 5 numbers each.
+    /// `obbs=`: the two boxes of the separating-axis test, 5 numbers each in 2D, 9 in 3D.
     pub obbs: Option<Vec<f32>>,
+    /// `volumes=`: the 3D view's bounding volumes, of the mesh or of the brush.
+    pub volumes: Option<Part3d>,
     /// `step=`.
     pub step: Option<usize>,
     /// `panels=`: which of the controls, the stepper and the tree diagram are shown.
@@ -211,7 +218,14 @@ impl StartParams {
             "lesson-url" => self.lesson_url = Some(lesson_url(value)?),
             "ray" => self.ray = Some(numbers("ray", value, &[4, 6])?),
             "point" => self.point = Some(numbers("point", value, &[2, 3])?),
-            "obbs" => self.obbs = Some(numbers("obbs", value, &[10])?),
+            "obbs" => self.obbs = Some(numbers("obbs", value, &[10, 18])?),
+            "volumes" => {
+                self.volumes = Some(match value {
+                    "mesh" => Part3d::Mesh,
+                    "brush" => Part3d::Brush,
+                    other => return Err(unknown("volumes", "part", other, &["mesh", "brush"])),
+                });
+            }
             "polygon" => {
                 let counts: Vec<usize> = (3..=64).map(|corners| 2 * corners).collect();
                 self.polygon = Some(numbers("polygon", value, &counts)?);
@@ -282,6 +296,9 @@ impl StartParams {
         if let Some(v) = self.variant {
             parts.push(format!("variant={}", stored_name(&v)));
         }
+        if let Some(part) = self.volumes {
+            parts.push(format!("volumes={}", part.word()));
+        }
         if let Some(lesson) = &self.lesson {
             parts.push(format!("lesson={lesson}"));
         }
@@ -309,6 +326,7 @@ impl StartParams {
             ray: self.ray.clone(),
             point: self.point.clone(),
             obbs: self.obbs.clone(),
+            volumes: self.volumes,
             polygon: self.polygon.clone(),
             task: self.task.map(Into::into),
             variant: self.variant.map(Into::into),

@@ -36,6 +36,14 @@ pub fn describe(lab: &Lab) -> Described {
         if let Some(point) = &three.point {
             words.push(format!("point={}", numbers_text(point)));
         }
+        let lab3d = lab.three();
+        if lab3d.volumes.shown {
+            words.push(format!("volumes={}", lab3d.volumes.part.word()));
+        }
+        if let Some(pair) = &three.obb_pair {
+            let numbers = [pair.a, pair.b].map(|b| [b.center, b.half, b.degrees].concat());
+            words.push(format!("obbs={}", numbers_text(&numbers.concat())));
+        }
         (
             three.structure,
             three.compare,

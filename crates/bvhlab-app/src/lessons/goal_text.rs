@@ -9,7 +9,7 @@ use crate::model::goal::{Comparison, Goal, Quantity, Target, Word};
 use crate::persist::{SplitName, StructureName, TaskName, VariantName};
 
 /// The quantities a goal reads, with what each is (the lessons' README lists these).
-pub const QUANTITIES: [(&str, Quantity, &str); 25] = [
+pub const QUANTITIES: [(&str, Quantity, &str); 26] = [
     (
         "answer",
         Quantity::Answer,
@@ -85,32 +85,37 @@ pub const QUANTITIES: [(&str, Quantity, &str); 25] = [
     (
         "separating-axes",
         Quantity::SeparatingAxes,
-        "how many axes separate the two boxes of the separating-axis demo (0: they overlap)",
+        "how many axes separate the two boxes of the separating-axis test (0: they overlap)",
+    ),
+    (
+        "separating-edge-axes",
+        Quantity::SeparatingEdgeAxes,
+        "how many of the 3D test's nine edge-pair axes (A_i × B_j) separate its boxes",
     ),
     (
         "tightness-sphere",
         Quantity::Tightness(FitKind::SphereCentroid),
-        "the selection's convex hull area over its centroid sphere's, 0 to 1 (2D)",
+        "the convex hull's area (3D: volume) over the centroid sphere's, 0 to 1, for the 2D selection or the 3D part",
     ),
     (
         "tightness-ritter",
         Quantity::Tightness(FitKind::SphereRitter),
-        "the hull's area over Ritter's sphere's (2D)",
+        "the hull's area (3D: volume) over Ritter's sphere's",
     ),
     (
         "tightness-welzl",
         Quantity::Tightness(FitKind::SphereWelzl),
-        "the hull's area over Welzl's minimal sphere's (2D)",
+        "the hull's area (3D: volume) over Welzl's minimal sphere's",
     ),
     (
         "tightness-aabb",
         Quantity::Tightness(FitKind::Aabb),
-        "the hull's area over the AABB's (2D)",
+        "the hull's area (3D: volume) over the AABB's",
     ),
     (
         "tightness-obb",
         Quantity::Tightness(FitKind::Obb),
-        "the hull's area over the PCA OBB's (2D)",
+        "the hull's area (3D: volume) over the PCA OBB's",
     ),
     ("ray-x", Quantity::RayOrigin(0), "the ray origin's x"),
     ("ray-y", Quantity::RayOrigin(1), "the ray origin's y"),

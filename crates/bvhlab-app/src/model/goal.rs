@@ -4,6 +4,7 @@
 //! [`crate::lessons`], and its words are listed in `lessons/README.md`.
 
 use bvhlab::Vector;
+use bvhlab::volume::AxisSource;
 
 use super::dimension::LabPrimitive;
 use super::half::Half;
@@ -45,11 +46,13 @@ pub enum Quantity {
     /// Predict's questions answered right (first time or after a hint) in the exercise of
     /// the half shown.
     Predicted,
-    /// How many of the separating-axis demo's axes separate its two boxes (2D; 0: they
-    /// overlap).
+    /// How many of the separating-axis test's axes separate its two boxes (0: they
+    /// overlap), in the half shown.
     SeparatingAxes,
-    /// How tightly a bounding volume of the 2D selection fits: the convex hull's area over
-    /// the volume's, in (0, 1].
+    /// How many of the 3D test's nine edge-pair axes (`A_i × B_j`) separate its boxes.
+    SeparatingEdgeAxes,
+    /// How tightly a bounding volume fits the 2D selection or the 3D part: the convex hull's
+    /// area (volume in 3D) over the volume's, in (0, 1].
     Tightness(bvhlab::FitKind),
     /// The ray origin's x, y or z.
     RayOrigin(usize),
@@ -229,7 +232,10 @@ impl Quantity {
     fn of_lab(self) -> bool {
         matches!(
             self,
-            Self::Predicted | Self::SeparatingAxes | Self::Tightness(_)
+            Self::Predicted
+                | Self::SeparatingAxes
+                | Self::SeparatingEdgeAxes
+                | Self::Tightness(_)
         )
     }
 }
@@ -237,16 +243,32 @@ impl Quantity {
 /// A quantity read from the whole lab (see [`Quantity::of_lab`]).
 fn lab_value(lab: &Lab, quantity: Quantity) -> Option<Value> {
     let two = Some(lab.two()).filter(|_| lab.dimension() == Dimension::Two);
+    let three = Some(lab.three()).filter(|_| lab.dimension() == Dimension::Three);
+    let separating_3d = |edges_only: bool| -> Option<f64> {
+        let tests = three?.obb_pair?.tests();
+        let separating = tests.iter().flatten().filter(|t| {
+            t.separates() && (!edges_only || matches!(t.source, AxisSource::Edges(..)))
+        });
+        Some(separating.count() as f64)
+    };
     let number = match quantity {
         Quantity::Predicted => {
             let score = lab.predict().score(&lab.exercise());
             f64::from(score.first_time + score.after_hint)
         }
+        Quantity::SeparatingAxes if three.is_some() => separating_3d(false)?,
         Quantity::SeparatingAxes => {
             let pair = two?.obb_pair?;
             pair.tests().iter().filter(|t| t.separates()).count() as f64
         }
-        Quantity::Tightness(kind) => f64::from(two?.fits()?.report.get(kind)?.tightness?),
+        Quantity::SeparatingEdgeAxes => separating_3d(true)?,
+        Quantity::Tightness(kind) => {
+            let report = match three {
+                Some(three) => &three.part_fits()?.fits.as_ref()?.report,
+                None => &two?.fits()?.report,
+            };
+            f64::from(report.get(kind)?.tightness?)
+        }
         _ => return None,
     };
     Some(Value::Number(number))
@@ -309,7 +331,10 @@ fn read<P: LabPrimitive>(
             Some(Value::Number(f64::from(cost)))
         }
         // Read from the lab, not a half (see `Goal::now`).
-        Quantity::Predicted | Quantity::SeparatingAxes | Quantity::Tightness(_) => None,
+        Quantity::Predicted
+        | Quantity::SeparatingAxes
+        | Quantity::SeparatingEdgeAxes
+        | Quantity::Tightness(_) => None,
         Quantity::Step => number(half.playback.shown(half.steps()) as u64),
         Quantity::Nodes => lane
             .marks()

@@ -13,7 +13,9 @@ use super::presets::Preset;
 use super::question::{Task, Variant};
 use super::structures::StructureKind;
 use super::tools::Tool;
+use super::obb_pair3d::{BoxPose3, ObbPair3};
 use super::volumes::{BoxPose, ObbPair};
+use super::volumes3d::{Part3d, Volumes3d};
 use super::{Action, Action2d, Action3d, Dimension, HalfAction, Lab, PlaybackAction};
 
 /// Where the lab starts: each part that is `Some` is put in place, in the order of the
@@ -34,9 +36,12 @@ pub struct Setup {
     pub ray: Option<Vec<f32>>,
     /// A polygon added to the 2D scene and selected: its corners, 2 numbers each.
     pub polygon: Option<Vec<f32>>,
-    /// The separating-axis demo's two boxes (2D): for each, centre, half extents and angle
-    /// in degrees.
+    /// The separating-axis test's two boxes: for each, centre, half extents and angle in
+    /// degrees (2D, 5 numbers), or centre, half extents and turn about x, y, z in degrees
+    /// (3D, 9 numbers).
     pub obbs: Option<Vec<f32>>,
+    /// The 3D view's bounding volumes, shown and fitted to the mesh or the brush.
+    pub volumes: Option<Part3d>,
     /// The query point: `x,y` or `x,y,z`.
     pub point: Option<Vec<f32>>,
     /// What is stepped through.
@@ -134,6 +139,9 @@ impl Lab {
         }
         if let Some(numbers) = &setup.polygon {
             problems.extend(self.add_polygon(numbers, three, source));
+        }
+        if let Some(part) = setup.volumes {
+            problems.extend(self.show_volumes_3d(part, three, source));
         }
         if let Some(numbers) = &setup.obbs {
             problems.extend(self.place_obbs(numbers, three, source));
@@ -233,9 +241,15 @@ impl Lab {
     /// sentence each.
     fn place_obbs(&mut self, numbers: &[f32], three: bool, source: &str) -> Vec<String> {
         if three {
-            return vec![format!(
-                "{source}'s obbs are the 2D view's separating-axis boxes; the 3D view has none"
-            )];
+            let pair = match obb_pair3(numbers) {
+                Ok(pair) => pair,
+                Err(e) => return vec![format!("{source}'s obbs {e}")],
+            };
+            let mut problems = self.show_volumes_3d(self.three().volumes.part, true, source);
+            if let Err(e) = self.apply(Action3d::SetObbPair(Some(pair)).into()) {
+                problems.push(format!("{source}: {e}"));
+            }
+            return problems;
         }
         let pair = match obb_pair(numbers) {
             Ok(pair) => pair,
@@ -246,6 +260,59 @@ impl Lab {
             .filter_map(|a| self.apply(a.into()).err())
             .map(|e| format!("{source}: {e}"))
             .collect()
+    }
+}
+
+impl Lab {
+    /// Shows the 3D volumes fitted to `part`; what went wrong, one sentence each.
+    fn show_volumes_3d(&mut self, part: Part3d, three: bool, source: &str) -> Vec<String> {
+        if !three {
+            return vec![format!(
+                "{source}'s volumes are the 3D view's; the 2D view shows its own (preset=bounding-volumes)"
+            )];
+        }
+        let volumes = Volumes3d {
+            shown: true,
+            part,
+            ..self.three().volumes
+        };
+        let mut actions: Vec<Action> = vec![Action3d::SetVolumes(volumes).into()];
+        if part == Part3d::Brush {
+            // The brush follows the query point: its gizmo and keys come with the Point tool.
+            actions.push(Action3d::SetTool(super::tools::Tool3d::Point).into());
+        }
+        actions
+            .into_iter()
+            .filter_map(|a| self.apply(a).err())
+            .map(|e| format!("{source}: {e}"))
+            .collect()
+    }
+}
+
+/// The 3D test's boxes from 18 numbers: for each, centre, half extents (at least 0) and turn
+/// about x, y, z in degrees.
+fn obb_pair3(numbers: &[f32]) -> Result<ObbPair3, String> {
+    let &[ax, ay, az, aw, ah, ad, arx, ary, arz, bx, by, bz, bw, bh, bd, brx, bry, brz] = numbers
+    else {
+        return Err(format!("take 18 numbers in 3D, not {}", numbers.len()));
+    };
+    let pair = ObbPair3 {
+        a: BoxPose3 {
+            center: Vec3::new(ax, ay, az),
+            half: Vec3::new(aw, ah, ad),
+            degrees: Vec3::new(arx, ary, arz),
+        },
+        b: BoxPose3 {
+            center: Vec3::new(bx, by, bz),
+            half: Vec3::new(bw, bh, bd),
+            degrees: Vec3::new(brx, bry, brz),
+        },
+        step: 0,
+    };
+    if pair.is_valid() {
+        Ok(pair)
+    } else {
+        Err("have a half extent below 0; half extents must be at least 0".to_owned())
     }
 }
 

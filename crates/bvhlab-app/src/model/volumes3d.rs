@@ -20,6 +20,14 @@ pub enum Part3d {
 }
 
 impl Part3d {
+    /// Its word in the page's address and a lesson's setup (`volumes=brush`).
+    pub fn word(self) -> &'static str {
+        match self {
+            Self::Mesh => "mesh",
+            Self::Brush => "brush",
+        }
+    }
+
     /// Its name in the panel and the status line.
     pub fn label(self) -> &'static str {
         match self {
