@@ -7,30 +7,41 @@ const tag = process.argv[4] ?? 'a';
 const ctx = await chromium.launchPersistentContext('', { executablePath: '/usr/bin/chromium', headless: true, args: [...BASE_ARGS, ...WEBGPU_ARGS], viewport: { width: w, height: h }, deviceScaleFactor: 1 });
 const page = await ctx.newPage();
 page.on('console', (m) => { if (m.type() === 'error') console.log('console:', m.text()); });
-await page.goto(url + '?mesh=bunny');
-await waitForReport(page, (r) => r.three?.ray || r.three?.agrees !== undefined, 120000, 'built');
-await page.waitForFunction(() => document.querySelectorAll('#lab-a11y *').length > 50, null, { timeout: 60000 });
-await page.waitForTimeout(1000);
+async function open(search) {
+  await page.goto(url + search);
+  await waitForReport(page, (r) => r.three?.ray || r.three?.agrees !== undefined, 120000, 'built');
+  await page.waitForFunction(() => document.querySelectorAll('#lab-a11y *').length > 50, null, { timeout: 60000 });
+  await page.waitForTimeout(1500);
+}
 async function press(role, text) {
   const ok = await page.evaluate(([role, text]) => {
-    const e = [...document.querySelectorAll(`#lab-a11y [role="${role}"], #lab-a11y ${role}`)].find((e) => e.textContent === text);
-    if (!e) return [...document.querySelectorAll(`#lab-a11y [role="${role}"], #lab-a11y ${role}`)].map((e) => e.textContent).slice(0, 80);
+    const all = [...document.querySelectorAll(`#lab-a11y [role="${role}"], #lab-a11y ${role}`)];
+    const e = all.find((e) => e.textContent === text);
+    if (!e) return all.map((e) => e.textContent).slice(0, 80);
     e.click(); return true;
   }, [role, text]);
   if (ok !== true) console.log('not found', role, text, JSON.stringify(ok));
   await page.waitForTimeout(800);
 }
+const shot = (name) => page.screenshot({ path: `/work/shots/${tag}-${name}-${w}.png` });
+await open('?mesh=bunny&fresh=1');
 await press('checkbox', 'Show the bounding volumes');
-await page.waitForTimeout(1500);
-await page.screenshot({ path: `/work/shots/${tag}-1-mesh-${w}.png` });
+await page.waitForTimeout(1000);
+await shot('1-mesh');
 await press('checkbox', 'Slab test of the ray against the AABB (three slabs)');
-await page.screenshot({ path: `/work/shots/${tag}-2-slab-${w}.png` });
+await shot('2-slab');
 await press('radio', 'the brush (triangles within r of q)');
-await page.waitForTimeout(1500);
-await page.screenshot({ path: `/work/shots/${tag}-3-brush-${w}.png` });
-await press('checkbox', 'Separating-axis test of two OBBs (15 axes)');
-await page.waitForTimeout(1500);
-await page.screenshot({ path: `/work/shots/${tag}-4-sat-${w}.png` });
+await page.waitForTimeout(1000);
+await shot('3-brush');
+await open('?mesh=bunny&fresh=1&obbs=0,5,0,2,2,2,0,0,0,3.2,5,3.2,2,1,1,45,20,0');
+await shot('4-sat');
 for (let i = 0; i < 7; i++) await press('button', 'Next axis');
-await page.screenshot({ path: `/work/shots/${tag}-5-sat-edge-${w}.png` });
+await shot('5-sat-edge');
+await open('?mesh=bunny&fresh=1&volumes=brush&point=2.1,5.3,-0.9');
+await press('checkbox', 'Collision of two trees: the part (A) against a moved copy (B)');
+await page.waitForTimeout(1000);
+await shot('6-collision');
+await press('button', 'First test');
+for (let i = 0; i < 6; i++) await press('button', 'Next test');
+await shot('7-collision-step');
 await ctx.close();

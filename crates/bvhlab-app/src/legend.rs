@@ -37,6 +37,7 @@ pub fn entries(cx: &Cx<'_>) -> Vec<(Color32, &'static str)> {
             let mut all = marks("tested triangle").to_vec();
             all.extend(crate::lab3d::volumes::legend(cx.lab.three()));
             all.extend(crate::lab3d::sat::legend(cx.lab.three()));
+            all.extend(crate::lab3d::collision::legend(cx.lab.three()));
             all
         }
     };

@@ -254,6 +254,13 @@ fn the_volumes_and_the_two_boxes_come_back_from_a_file_and_a_bad_box_is_refused(
     pair.a.degrees = Vec3::new(12.5, -40.0, 7.25);
     pair.step = 9;
     act(&mut h, Action3d::SetObbPair(Some(pair)));
+    let collision = bvhlab_app::model::collision3d::Collision3d {
+        offset: Vec3::new(0.5, 0.0, 0.25),
+        degrees: Vec3::new(0.0, 30.0, 12.5),
+        tree: bvhlab_app::model::collision::CollisionTree::Aabb,
+        step: Some(3),
+    };
+    act(&mut h, Action3d::SetCollision(Some(collision)));
     let (volumes, point) = (three(&h).volumes, three(&h).point);
     let file = to_file(h.state().lab());
 
@@ -265,8 +272,19 @@ fn the_volumes_and_the_two_boxes_come_back_from_a_file_and_a_bad_box_is_refused(
     settle(&mut fresh);
     assert_eq!(three(&fresh).volumes, volumes);
     assert_eq!(three(&fresh).obb_pair, Some(pair));
+    assert_eq!(three(&fresh).collision, Some(collision));
+    let pairs = |h: &Harness<'_, LabApp>| {
+        three(h)
+            .collision_run()
+            .and_then(|c| c.run.as_ref())
+            .map(|r| r.pairs.clone())
+    };
+    assert_eq!(pairs(&fresh), pairs(&h), "the same answer");
     assert_eq!(three(&fresh).point, point);
-    assert!(!three(&fresh).display.structure, "the trees put away, as when shown");
+    assert!(
+        !three(&fresh).display.structure,
+        "the trees put away, as when shown"
+    );
     let part = |h: &Harness<'_, LabApp>| three(h).part_fits().map(|p| p.triangles.clone());
     assert_eq!(part(&fresh), part(&h), "the same brushed part");
 

@@ -111,6 +111,7 @@ pub fn draw(
     // The volumes are the mesh's, not a structure's: drawn while one builds or is none.
     super::volumes::draw_volumes(lab, lit.volume, &mut d);
     super::sat::draw_sat(lab, &mut d);
+    super::collision::draw_collision(lab, &mut d);
     let task = lab.half.task;
     let lane = lab.half.lane_at(index);
     let (Some(mesh), Some(built)) = (&lab.mesh, lane.current(lab.revision())) else {

@@ -10,6 +10,7 @@
 //! `wire.rs` (shapes as segments), `heat.rs` (the heat map), `side_view.rs` (the ray seen
 //! from the side, in an inset).
 
+pub mod collision;
 pub mod draw;
 pub mod heat;
 pub mod input;

@@ -7,6 +7,7 @@ use bvhlab::Ray3;
 use bvhlab::glam::{Vec2, Vec3};
 
 use super::camera2d::Camera2d;
+use super::collision3d::Collision3d;
 use super::dimension::Dimension;
 use super::heat::HeatSettings;
 use super::lab2d::{Display, RayHandles};
@@ -139,6 +140,8 @@ pub enum Action3d {
     SetVolumes(Volumes3d),
     /// The two boxes of the separating-axis test and the axis looked at; `None` ends it.
     SetObbPair(Option<ObbPair3>),
+    /// The collision query of the volumes' part against a moved copy of it; `None` ends it.
+    SetCollision(Option<Collision3d>),
 }
 
 /// A change of the structures, question or playback of the half shown.

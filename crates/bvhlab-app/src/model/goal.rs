@@ -232,10 +232,7 @@ impl Quantity {
     fn of_lab(self) -> bool {
         matches!(
             self,
-            Self::Predicted
-                | Self::SeparatingAxes
-                | Self::SeparatingEdgeAxes
-                | Self::Tightness(_)
+            Self::Predicted | Self::SeparatingAxes | Self::SeparatingEdgeAxes | Self::Tightness(_)
         )
     }
 }

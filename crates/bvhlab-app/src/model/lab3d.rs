@@ -11,6 +11,7 @@ use bvhlab::{Ray3, Triangle3};
 
 use super::Note;
 use super::action::Action3d;
+use super::collision3d::{Collision3d, CollisionCache};
 use super::half::Half;
 use super::heat::HeatSettings;
 use super::lane::BuildBudget;
@@ -116,6 +117,10 @@ pub struct Lab3d {
     part_fits: PartFits,
     /// The two boxes of the separating-axis test, while it is on.
     pub obb_pair: Option<ObbPair3>,
+    /// The collision query of the part against a moved copy, while it is on.
+    pub collision: Option<Collision3d>,
+    /// Its run.
+    collision_run: CollisionCache,
     revisions: u64,
 }
 
@@ -146,6 +151,8 @@ impl Default for Lab3d {
             volumes: Volumes3d::default(),
             part_fits: PartFits::default(),
             obb_pair: None,
+            collision: None,
+            collision_run: CollisionCache::default(),
             revisions: 0,
         }
     }
@@ -212,6 +219,13 @@ impl Lab3d {
         (self.volumes.shown && self.mesh.is_some()).then_some(&self.part_fits)
     }
 
+    /// The collision query's run and B's triangles, while it is on and the volumes shown.
+    pub fn collision_run(&self) -> Option<&CollisionCache> {
+        self.part_fits()
+            .and(self.collision.as_ref())
+            .map(|_| &self.collision_run)
+    }
+
     /// Brings the recordings up to date (builds advance only in [`Lab3d::tick`]), and the
     /// volumes' fits while they are shown.
     pub(super) fn refresh(&mut self, budget: BuildBudget) {
@@ -221,6 +235,14 @@ impl Lab3d {
             let (part, point, radius) = (self.volumes.part, self.point, self.half.radius);
             self.part_fits
                 .refresh(&mesh.mesh, revision, part, point, radius);
+            if let Some(collision) = &self.collision {
+                self.collision_run.refresh(
+                    mesh.mesh.triangles(),
+                    revision,
+                    &self.part_fits.triangles,
+                    collision,
+                );
+            }
         }
         let triangles = mesh.mesh.triangles();
         self.half
@@ -376,6 +398,12 @@ impl Lab3d {
             Action3d::SetHeat(heat) => self.heat = heat,
             Action3d::Animate(on) => self.motion.on = on,
             Action3d::SetVolumes(volumes) => self.set_volumes(volumes),
+            Action3d::SetCollision(collision) => {
+                if collision.is_some_and(|c| !c.is_valid()) {
+                    return Err("the copy's move and turn must be finite numbers".to_owned());
+                }
+                self.collision = collision;
+            }
             Action3d::SetObbPair(pair) => {
                 if pair.is_some_and(|p| !p.is_valid()) {
                     return Err(

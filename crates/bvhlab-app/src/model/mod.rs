@@ -33,6 +33,8 @@ mod apply;
 pub mod build_job;
 pub mod camera2d;
 pub mod clock;
+pub mod collision;
+pub mod collision3d;
 pub mod dimension;
 pub mod goal;
 pub mod half;

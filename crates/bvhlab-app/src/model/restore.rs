@@ -7,19 +7,20 @@
 use bvhlab::glam::Vec2;
 
 use super::camera2d::Camera2d;
+use super::collision3d::Collision3d;
 use super::dimension::Dimension;
 use super::half::Half;
 use super::lab2d::{Display, Lab2d, RayHandles};
 use super::lab3d::{Lab3d, Placement3d};
 use super::lane::Lane;
 use super::mesh::MeshSource;
+use super::obb_pair3d::ObbPair3;
 use super::playback::Playback;
 use super::presets::Preset;
 use super::question::{Task, Variant};
 use super::refit::UpdateMode;
 use super::scene::Scene;
 use super::structures::BuildSettings;
-use super::obb_pair3d::ObbPair3;
 use super::volumes::VolumeToggles;
 use super::volumes3d::Volumes3d;
 
@@ -82,6 +83,8 @@ pub struct Restore3d {
     pub volumes: Volumes3d,
     /// The two boxes of the separating-axis test, if it is on.
     pub obb_pair: Option<ObbPair3>,
+    /// The collision query's copy, if it is on.
+    pub collision: Option<Collision3d>,
 }
 
 /// A whole state of the lab.
@@ -180,5 +183,6 @@ impl Restore3d {
         }
         lab.volumes = self.volumes;
         lab.obb_pair = self.obb_pair;
+        lab.collision = self.collision;
     }
 }

@@ -9,11 +9,11 @@ use bvhlab::glam::{Vec2, Vec3};
 
 use super::lab2d::RayHandles;
 use super::mesh::MeshSource;
+use super::obb_pair3d::{BoxPose3, ObbPair3};
 use super::presets::Preset;
 use super::question::{Task, Variant};
 use super::structures::StructureKind;
 use super::tools::Tool;
-use super::obb_pair3d::{BoxPose3, ObbPair3};
 use super::volumes::{BoxPose, ObbPair};
 use super::volumes3d::{Part3d, Volumes3d};
 use super::{Action, Action2d, Action3d, Dimension, HalfAction, Lab, PlaybackAction};
@@ -137,15 +137,7 @@ impl Lab {
                 Err(e) => problems.push(e),
             }
         }
-        if let Some(numbers) = &setup.polygon {
-            problems.extend(self.add_polygon(numbers, three, source));
-        }
-        if let Some(part) = setup.volumes {
-            problems.extend(self.show_volumes_3d(part, three, source));
-        }
-        if let Some(numbers) = &setup.obbs {
-            problems.extend(self.place_obbs(numbers, three, source));
-        }
+        problems.extend(self.place_shapes(setup, three, source));
         if let Some(task) = setup.task {
             apply(self, HalfAction::SetTask(task).into(), &mut problems);
         }
@@ -264,6 +256,22 @@ impl Lab {
 }
 
 impl Lab {
+    /// The setup's added polygon, the 3D volumes and the separating-axis boxes; what went
+    /// wrong, one sentence each.
+    fn place_shapes(&mut self, setup: &Setup, three: bool, source: &str) -> Vec<String> {
+        let mut problems = Vec::new();
+        if let Some(numbers) = &setup.polygon {
+            problems.extend(self.add_polygon(numbers, three, source));
+        }
+        if let Some(part) = setup.volumes {
+            problems.extend(self.show_volumes_3d(part, three, source));
+        }
+        if let Some(numbers) = &setup.obbs {
+            problems.extend(self.place_obbs(numbers, three, source));
+        }
+        problems
+    }
+
     /// Shows the 3D volumes fitted to `part`; what went wrong, one sentence each.
     fn show_volumes_3d(&mut self, part: Part3d, three: bool, source: &str) -> Vec<String> {
         if !three {
@@ -292,7 +300,26 @@ impl Lab {
 /// The 3D test's boxes from 18 numbers: for each, centre, half extents (at least 0) and turn
 /// about x, y, z in degrees.
 fn obb_pair3(numbers: &[f32]) -> Result<ObbPair3, String> {
-    let &[ax, ay, az, aw, ah, ad, arx, ary, arz, bx, by, bz, bw, bh, bd, brx, bry, brz] = numbers
+    let &[
+        ax,
+        ay,
+        az,
+        aw,
+        ah,
+        ad,
+        arx,
+        ary,
+        arz,
+        bx,
+        by,
+        bz,
+        bw,
+        bh,
+        bd,
+        brx,
+        bry,
+        brz,
+    ] = numbers
     else {
         return Err(format!("take 18 numbers in 3D, not {}", numbers.len()));
     };

@@ -71,7 +71,9 @@ fn pose_editor(ui: &mut egui::Ui, name: &str, pose: &mut BoxPose3, part_obb: Opt
         ),
     ] {
         ui.horizontal(|ui| {
-            ui.label(what);
+            // Each field is named by its row ("B turn about x, y, z") and its prefix ("x"):
+            // a screen reader says which box and which number.
+            let row = ui.label(format!("{name} {what}")).id;
             for (axis, c) in ["x", "y", "z"].into_iter().zip(v.as_mut()) {
                 ui.add(
                     DragValue::new(c)
@@ -81,6 +83,7 @@ fn pose_editor(ui: &mut egui::Ui, name: &str, pose: &mut BoxPose3, part_obb: Opt
                         .suffix(suffix)
                         .max_decimals(3),
                 )
+                .labelled_by(row)
                 .on_hover_text(format!("Box {name}'s {what}, {axis}"));
             }
         });

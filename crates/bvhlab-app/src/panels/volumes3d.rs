@@ -59,6 +59,7 @@ impl Panel for Volumes3dPanel {
         act_on_change(cx, volumes, chosen);
         part_and_fits(cx, ui);
         super::sat3d::sat_section(cx, ui);
+        super::collision3d::collision_section(cx, ui);
     }
 }
 

@@ -22,7 +22,7 @@ use crate::model::{Dimension, Lab};
 
 use super::names::{Coord, TaskName, VariantName, shorten};
 use super::state::{PlaybackState, SettingsState};
-use super::volumes3d::{ObbPair3State, Volumes3dState};
+use super::volumes3d::{Collision3dState, ObbPair3State, Volumes3dState};
 use crate::model::volumes3d::Volumes3d;
 
 /// A point or direction in 3D as stored: `[x, y, z]`.
@@ -70,6 +70,9 @@ pub struct ThreeState {
     /// The two boxes of the separating-axis test (absent: the test is off).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub obb_pair: Option<ObbPair3State>,
+    /// The collision query's copy of the part (absent: the query is off).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub collision: Option<Collision3dState>,
 }
 
 /// The mesh: `{"builtin": "bunny"}` or `{"file": "part.stl"}`.
@@ -182,6 +185,7 @@ impl ThreeState {
             }),
             volumes: (lab.volumes != Volumes3d::default()).then(|| lab.volumes.into()),
             obb_pair: lab.obb_pair.as_ref().map(Into::into),
+            collision: lab.collision.as_ref().map(Into::into),
         }
     }
 }
@@ -246,6 +250,7 @@ impl Checked3d {
             live: two.live,
         });
         let obb_pair = state.obb_pair.map(|p| p.check()).transpose()?;
+        let collision = state.collision.map(|c| c.check()).transpose()?;
         let (mesh, note) = match &state.mesh {
             MeshState::File(name) => {
                 let name = shorten(name, MAX_NAME_CHARS);
@@ -286,6 +291,7 @@ impl Checked3d {
                 },
                 volumes: state.volumes.map(Into::into).unwrap_or_default(),
                 obb_pair,
+                collision,
             },
             note,
         })

@@ -1,6 +1,6 @@
 //! The 3D half's §2 in a saved state: whether the volumes are shown, which, fitted to which
-//! part, the slab test, and the two boxes of the separating-axis test. Absent in states from
-//! before §2 came to 3D: nothing of it is shown then.
+//! part, the slab test, the two boxes of the separating-axis test, and the collision query's
+//! copy. Absent in states from before §2 came to 3D: nothing of it is shown then.
 
 use bvhlab::glam::Vec3;
 use serde::{Deserialize, Serialize};
@@ -8,6 +8,8 @@ use serde::{Deserialize, Serialize};
 use super::names::Coord;
 use super::state::VolumeState;
 use super::state3d::StoredPoint3;
+use crate::model::collision::CollisionTree;
+use crate::model::collision3d::Collision3d;
 use crate::model::obb_pair3d::{BoxPose3, CANDIDATES, ObbPair3};
 use crate::model::volumes3d::{Part3d, Volumes3d};
 
@@ -137,5 +139,69 @@ impl ObbPair3State {
             b: pose("B", &self.b)?,
             step: self.step,
         })
+    }
+}
+
+/// The collision query's copy, trees and step.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Collision3dState {
+    /// The copy's move.
+    pub offset: StoredPoint3,
+    /// The copy's turn about x, y and z, in degrees.
+    pub degrees: StoredPoint3,
+    /// Both trees' kind.
+    pub tree: TreeName,
+    /// The walk's step shown (absent: all of it).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub step: Option<usize>,
+}
+
+/// [`CollisionTree`] as stored.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum TreeName {
+    /// Sphere trees.
+    Sphere,
+    /// AABB trees.
+    Aabb,
+    /// OBB trees.
+    Obb,
+}
+
+impl From<&Collision3d> for Collision3dState {
+    fn from(c: &Collision3d) -> Self {
+        Self {
+            offset: stored(c.offset),
+            degrees: stored(c.degrees),
+            tree: match c.tree {
+                CollisionTree::Sphere => TreeName::Sphere,
+                CollisionTree::Aabb => TreeName::Aabb,
+                CollisionTree::Obb => TreeName::Obb,
+            },
+            step: c.step,
+        }
+    }
+}
+
+impl Collision3dState {
+    /// The collision query's settings, or what is wrong with them.
+    pub fn check(&self) -> Result<Collision3d, String> {
+        let read = |p: StoredPoint3| Vec3::new(p[0].0, p[1].0, p[2].0);
+        let c = Collision3d {
+            offset: read(self.offset),
+            degrees: read(self.degrees),
+            tree: match self.tree {
+                TreeName::Sphere => CollisionTree::Sphere,
+                TreeName::Aabb => CollisionTree::Aabb,
+                TreeName::Obb => CollisionTree::Obb,
+            },
+            step: self.step,
+        };
+        if c.is_valid() {
+            Ok(c)
+        } else {
+            Err("the collision query's copy needs a finite move and turn".to_owned())
+        }
     }
 }
