@@ -37,6 +37,10 @@ await open('?mesh=bunny&fresh=1&obbs=0,5,0,2,2,2,0,0,0,3.2,5,3.2,2,1,1,45,20,0')
 await shot('4-sat');
 for (let i = 0; i < 7; i++) await press('button', 'Next axis');
 await shot('5-sat-edge');
+await page.mouse.move(200, h - 150);
+for (let i = 0; i < 2; i++) { await page.mouse.wheel(0, 400); await page.waitForTimeout(300); }
+await page.waitForTimeout(800);
+await shot('5b-sat-panel');
 await open('?mesh=bunny&fresh=1&volumes=brush&point=2.1,5.3,-0.9');
 await press('checkbox', 'Collision of two trees: the part (A) against a moved copy (B)');
 await page.waitForTimeout(1000);
@@ -44,4 +48,8 @@ await shot('6-collision');
 await press('button', 'First test');
 for (let i = 0; i < 6; i++) await press('button', 'Next test');
 await shot('7-collision-step');
+await page.mouse.move(200, h - 150);
+for (let i = 0; i < 3; i++) { await page.mouse.wheel(0, 400); await page.waitForTimeout(300); }
+await page.waitForTimeout(800);
+await shot('8-collision-panel');
 await ctx.close();

@@ -190,3 +190,19 @@ fn a_box_is_put_on_the_brushed_parts_pca_box() {
     assert!(refused.expect_err("refused").contains("half extents"));
     assert_eq!(pair(&h), before);
 }
+
+#[test]
+fn the_two_boxes_put_the_trees_away_and_bring_them_back() {
+    let mut h = lab_3d();
+    assert!(three(&h).display.structure);
+    // Without the volumes: the test is on its own in the panel.
+    click(&mut h, "Separating-axis test of two OBBs (15 axes)");
+    assert!(three(&h).obb_pair.is_some() && !three(&h).volumes.shown);
+    assert!(!three(&h).display.structure && !three(&h).display.marks);
+    // The volumes shown and hidden again while the boxes stay: the trees stay away.
+    click(&mut h, "Show the bounding volumes");
+    click(&mut h, "Show the bounding volumes");
+    assert!(!three(&h).display.structure);
+    act(&mut h, Action3d::SetObbPair(None));
+    assert!(three(&h).display.structure && three(&h).display.marks);
+}

@@ -49,7 +49,7 @@ pub fn legend(lab: &Lab3d) -> Vec<(egui::Color32, &'static str)> {
 pub(super) fn draw_volumes(lab: &Lab3d, highlight: Option<FitKind>, d: &mut Draw3d) {
     let Some(part) = lab.part_fits() else { return };
     if lab.volumes.part == Part3d::Brush {
-        let lit = rgba(colors::SELECTED, 0.55);
+        let lit = rgba(colors::SELECTED, 0.85);
         d.highlights.extend(
             part.triangles
                 .iter()

@@ -313,15 +313,27 @@ impl Lab3d {
         }
     }
 
-    /// The volumes' rules: while they are shown the structure's nodes and the query's marks
-    /// are not drawn (the lecture's §2 comes before any tree; the panel's switches show it
-    /// and can turn them back on), and come back when they are hidden. A brush chosen where
+    /// Whether lecture §2 is on screen: the volumes or the two boxes.
+    fn section2_shown(&self) -> bool {
+        self.volumes.shown || self.obb_pair.is_some()
+    }
+
+    /// §2's rule: while its volumes or boxes are shown the structure's nodes and the query's
+    /// marks are not drawn (the lecture's §2 comes before any tree; the panel's switches show
+    /// it and can turn them back on), and they come back when §2 is put away. Called after
+    /// a change, with whether §2 was shown `before` it.
+    fn put_trees_away_for_section2(&mut self, before: bool) {
+        let now = self.section2_shown();
+        if now != before {
+            self.display.structure = !now;
+            self.display.marks = !now;
+        }
+    }
+
+    /// The volumes' rules: [`Lab3d::put_trees_away_for_section2`], and a brush chosen where
     /// it would hold nothing starts at the query point's closest point on the mesh.
     fn set_volumes(&mut self, volumes: Volumes3d) {
-        if volumes.shown != self.volumes.shown {
-            self.display.structure = !volumes.shown;
-            self.display.marks = !volumes.shown;
-        }
+        let before = self.section2_shown();
         if volumes.part == Part3d::Brush
             && self.volumes.part != Part3d::Brush
             && let Some(mesh) = &self.mesh
@@ -333,6 +345,7 @@ impl Lab3d {
             }
         }
         self.volumes = volumes;
+        self.put_trees_away_for_section2(before);
     }
 
     /// Carries out `action`, with the rules that go with it; what the status line says
@@ -411,7 +424,9 @@ impl Lab3d {
                             .to_owned(),
                     );
                 }
+                let before = self.section2_shown();
                 self.obb_pair = pair;
+                self.put_trees_away_for_section2(before);
             }
         }
         Ok(Note::Keep)

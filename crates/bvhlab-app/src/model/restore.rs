@@ -177,7 +177,7 @@ impl Restore3d {
         lab.placement = Some(self.placement);
         lab.pending = Some(self.mesh);
         // As the volumes' rule has it: the trees' nodes are put away while they are shown.
-        if self.volumes.shown {
+        if self.volumes.shown || self.obb_pair.is_some() {
             lab.display.structure = false;
             lab.display.marks = false;
         }

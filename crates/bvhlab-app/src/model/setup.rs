@@ -237,11 +237,12 @@ impl Lab {
                 Ok(pair) => pair,
                 Err(e) => return vec![format!("{source}'s obbs {e}")],
             };
-            let mut problems = self.show_volumes_3d(self.three().volumes.part, true, source);
-            if let Err(e) = self.apply(Action3d::SetObbPair(Some(pair)).into()) {
-                problems.push(format!("{source}: {e}"));
-            }
-            return problems;
+            return self
+                .apply(Action3d::SetObbPair(Some(pair)).into())
+                .err()
+                .map(|e| format!("{source}: {e}"))
+                .into_iter()
+                .collect();
         }
         let pair = match obb_pair(numbers) {
             Ok(pair) => pair,

@@ -32,6 +32,11 @@ impl Panel for Volumes3dPanel {
             .on_hover_text("Of the whole mesh, or of the brush's part of it.");
         if !volumes.shown {
             act_on_change(cx, volumes, chosen);
+            super::sat3d::sat_section(cx, ui);
+            ui.label(
+                "The collision query of two trees takes the volumes' part: show the bounding \
+                 volumes to try it.",
+            );
             return;
         }
         ui.horizontal_wrapped(|ui| {
