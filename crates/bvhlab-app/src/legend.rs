@@ -31,6 +31,18 @@ pub fn entries(cx: &Cx<'_>) -> Vec<(Color32, &'static str)> {
         Dimension::Two => {
             let mut all = marks("tested segment").to_vec();
             all.extend(crate::lab2d::legend_volumes(cx.lab.two()));
+            if cx
+                .lab
+                .two()
+                .collision_run()
+                .is_some_and(|c| c.run.is_some())
+            {
+                all.extend([
+                    (colors::VISITED, "node pair overlaps"),
+                    (colors::CULLED, "node pair disjoint"),
+                    (colors::ANSWER, "segments meeting"),
+                ]);
+            }
             all
         }
         Dimension::Three => {

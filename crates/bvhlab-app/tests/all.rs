@@ -6,6 +6,7 @@ mod common;
 
 mod a11y;
 mod a11y_names;
+mod collision2d;
 mod collision3d;
 mod deform3d;
 mod embed;

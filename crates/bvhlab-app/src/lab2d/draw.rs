@@ -83,6 +83,7 @@ pub(super) fn draw(
     {
         volumes::draw_obb_pair(pair, &mut wp);
     }
+    super::collision::draw_collision(lab, &mut wp);
     draw_in_progress(
         &canvas.interaction,
         &mut wp,

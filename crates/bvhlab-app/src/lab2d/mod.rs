@@ -7,6 +7,7 @@
 //! Mirrors [`crate::lab3d`]: `mod.rs` the widget, `input.rs` the pointer, `draw.rs` what is
 //! drawn, `overlay.rs` the playback's state on top.
 
+mod collision;
 mod draw;
 mod input;
 pub mod interaction;

@@ -7,6 +7,7 @@ use bvhlab::Ray3;
 use bvhlab::glam::{Vec2, Vec3};
 
 use super::camera2d::Camera2d;
+use super::collision2d::Collision2d;
 use super::collision3d::Collision3d;
 use super::dimension::Dimension;
 use super::heat::HeatSettings;
@@ -105,6 +106,8 @@ pub enum Action2d {
     SetVolumes(VolumeToggles),
     /// The two boxes of the separating-axis demo.
     SetObbPair(ObbPair),
+    /// The collision query of the selection against the other shapes; `None` ends it.
+    SetCollision(Option<Collision2d>),
     /// Starts or stops the drifting preset's motion (refused on the other presets).
     SetAnimate(bool),
 }

@@ -10,13 +10,16 @@ use super::Note;
 use super::action::Action2d;
 use super::animation::{Animation, preset_lanes};
 use super::camera2d::Camera2d;
+use super::collision2d::{Collision2d, Collision2dCache};
 use super::half::Half;
-use super::history::{Edit, History, PresetSetup, SceneState};
+use super::history::History;
 use super::lane::BuildBudget;
 use super::presets::Preset;
 use super::scene::{Primitives, Scene, Shape, ShapeKind};
 use super::tools::Tool;
 use super::volumes::{Fits, ObbPair, VolumeToggles};
+
+mod undo;
 
 /// How the structure is drawn.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -97,6 +100,8 @@ pub struct Lab2d {
     pub volumes: VolumeToggles,
     /// The separating-axis demo's boxes, once the demo was opened.
     pub obb_pair: Option<ObbPair>,
+    /// The collision query of the selection against the rest, while it is on.
+    pub collision: Option<Collision2d>,
     /// The structures, the question and playback.
     pub half: Half<Segment2>,
     /// The drifting preset's motion (`None` for the other presets).
@@ -109,6 +114,8 @@ pub struct Lab2d {
     /// The selection's bounding volumes, derived once per scene revision and selection.
     fits: Option<Fits>,
     fits_key: Option<(u64, Vec<usize>)>,
+    /// The collision query's run.
+    collision_run: Collision2dCache,
 }
 
 impl Default for Lab2d {
@@ -133,6 +140,8 @@ impl Lab2d {
             display: Display::default(),
             volumes: VolumeToggles::default(),
             obb_pair: None,
+            collision: None,
+            collision_run: Collision2dCache::default(),
             half: Half::new(settings, 3.0),
             animation: None,
             history: History::default(),
@@ -159,6 +168,11 @@ impl Lab2d {
         self.fits.as_ref()
     }
 
+    /// The collision query's run, while it is on.
+    pub fn collision_run(&self) -> Option<&Collision2dCache> {
+        self.collision.as_ref().map(|_| &self.collision_run)
+    }
+
     /// The scene edits that can be undone and redone.
     pub fn history(&self) -> &History {
         &self.history
@@ -181,6 +195,10 @@ impl Lab2d {
         if self.fits_key.as_ref() != Some(&key) {
             self.fits = Fits::of(&self.scene.vertices(&self.selection));
             self.fits_key = Some(key);
+        }
+        if let Some(c) = &self.collision {
+            let run = &mut self.collision_run;
+            run.refresh(&self.prims, revision, &self.selection, c.tree);
         }
         let ray = self.valid_ray();
         self.half.refresh(
@@ -327,6 +345,7 @@ impl Lab2d {
             Action2d::SetDisplay(display) => self.display = display,
             Action2d::SetVolumes(volumes) => self.volumes = volumes,
             Action2d::SetObbPair(pair) => self.obb_pair = Some(pair),
+            Action2d::SetCollision(collision) => self.collision = collision,
         }
         Ok(Note::Keep)
     }
@@ -420,73 +439,5 @@ impl Lab2d {
             _ => {}
         }
         Ok(Note::Keep)
-    }
-}
-
-/// Undo and redo (the history is [`super::history`]).
-impl Lab2d {
-    /// The part of the half a scene edit changes (`setup`: and what a preset replaces).
-    fn scene_state(&self, setup: bool) -> SceneState {
-        SceneState {
-            scene: self.scene.clone(),
-            selection: self.selection.clone(),
-            preset: self.preset,
-            setup: setup.then(|| self.preset_setup()),
-        }
-    }
-
-    /// What loading a preset replaces besides the scene.
-    fn preset_setup(&self) -> PresetSetup {
-        PresetSetup {
-            settings: self.half.lane.settings,
-            ray: self.ray,
-            point: self.point,
-            volumes_shown: self.display.volumes,
-        }
-    }
-
-    /// Puts `state` back; returns the state it replaced (with as much of the setup).
-    fn swap_scene_state(&mut self, state: SceneState) -> SceneState {
-        let replaced = self.scene_state(state.setup.is_some());
-        self.scene = state.scene;
-        self.selection = state.selection;
-        self.preset = state.preset;
-        if let Some(setup) = state.setup {
-            self.half.lane.settings = setup.settings;
-            self.ray = setup.ray;
-            self.point = setup.point;
-            self.display.volumes = setup.volumes_shown;
-            // Another scene: frame it, as loading a preset does.
-            self.fit_pending = true;
-        }
-        replaced
-    }
-
-    /// Undoes the last scene edit.
-    fn undo(&mut self) -> Result<Note, String> {
-        let Some(edit) = self.history.take_undo() else {
-            return Err("there is no scene edit to undo".to_owned());
-        };
-        let state = self.swap_scene_state(edit.state);
-        let said = format!("Undid {} (Ctrl+Shift+Z redoes it).", edit.what);
-        self.history.push_redo(Edit {
-            state,
-            what: edit.what,
-        });
-        Ok(Note::Say(said))
-    }
-
-    /// Redoes the last scene edit undone.
-    fn redo(&mut self) -> Result<Note, String> {
-        let Some(edit) = self.history.take_redo() else {
-            return Err("there is no undone scene edit to redo".to_owned());
-        };
-        let state = self.swap_scene_state(edit.state);
-        let said = format!("Redid {}.", edit.what);
-        self.history.push_undo(Edit {
-            state,
-            what: edit.what,
-        });
-        Ok(Note::Say(said))
     }
 }

@@ -34,6 +34,7 @@ pub mod build_job;
 pub mod camera2d;
 pub mod clock;
 pub mod collision;
+pub mod collision2d;
 pub mod collision3d;
 pub mod dimension;
 pub mod goal;

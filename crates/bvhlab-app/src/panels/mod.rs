@@ -10,6 +10,8 @@
 //! - Below the view: the tree diagrams ([`tree`]); at the bottom, the status line
 //!   ([`status`]). [`export`]: the canvas, the 3D view and the tree as SVG or PNG.
 
+pub mod collision;
+pub mod collision2d;
 pub mod collision3d;
 pub mod export;
 pub mod formula;

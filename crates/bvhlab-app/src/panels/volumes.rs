@@ -80,6 +80,7 @@ fn volumes_section(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
     ray_sphere(cx, fits, ui);
     slab_test(cx, fits, ui);
     sat_demo(cx, ui);
+    super::collision2d::collision_section(cx, ui);
 }
 
 /// A table row's first cell: a small square in the colour `kind` is drawn in, then `name`.
