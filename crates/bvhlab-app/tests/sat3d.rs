@@ -11,6 +11,7 @@ use bvhlab_app::lab3d::sat::{SHADOW_A, SHADOW_B};
 use bvhlab_app::model::Action3d;
 use bvhlab_app::model::obb_pair3d::{BoxPose3, CANDIDATES, ObbPair3, axis_name};
 use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
 
 use crate::common::{act, click, labels, settle, shows};
 use crate::view3d::{lab_3d, three};
@@ -168,6 +169,14 @@ fn a_box_is_put_on_the_brushed_parts_pca_box() {
     click(&mut h, "Show the bounding volumes");
     click(&mut h, "Separating-axis test of two OBBs (15 axes)");
     settle(&mut h);
+    // Each number is named for screen readers by its box, row and axis.
+    for name in [
+        "A centre: x",
+        "B half extents: y",
+        "B turn about x, y, z: z",
+    ] {
+        assert!(h.query_by_label(name).is_some(), "a field named {name}");
+    }
     click(&mut h, "A = the part's OBB");
     settle(&mut h);
     let fitted = three(&h)

@@ -3,8 +3,6 @@
 //! event by event (which node pairs are tested, which are disjoint and cut off, which
 //! triangle pairs are tested and which meet), with its counts beside brute force's.
 
-use egui::DragValue;
-
 use crate::model::Action3d;
 use crate::model::collision::CollisionTree;
 use crate::model::collision3d::{Collision3d, MAX_COLLISION_TRIANGLES};
@@ -61,25 +59,17 @@ pub(super) fn collision_section(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
     }
 }
 
-/// The copy's move and turn, each number named for screen readers by its row.
+/// The copy's move and turn, each number named for screen readers by its row and axis.
 fn pose_editor(ui: &mut egui::Ui, c: &mut Collision3d) {
     let speed = (c.offset.abs().max_element() * 0.02).max(0.01);
     for (what, v, speed, suffix) in [
         ("B moved by", &mut c.offset, speed, ""),
         ("B turned about x, y, z", &mut c.degrees, 1.0, "°"),
     ] {
-        ui.horizontal(|ui| {
-            let row = ui.label(what).id;
-            for (axis, value) in ["x", "y", "z"].into_iter().zip(v.as_mut()) {
-                ui.add(
-                    DragValue::new(value)
-                        .speed(speed)
-                        .prefix(format!("{axis} "))
-                        .suffix(suffix)
-                        .max_decimals(3),
-                )
-                .labelled_by(row);
-            }
+        let mut values = v.to_array();
+        super::xyz_fields(ui, what, &mut values, |d| {
+            d.speed(speed).suffix(suffix).max_decimals(3)
         });
+        *v = bvhlab::glam::Vec3::from_array(values);
     }
 }

@@ -125,6 +125,30 @@ pub fn toggle<T: Copy>(
         .then_some(copy)
 }
 
+/// A row of three number fields (x, y, z) after the words `row`, each field named for screen
+/// readers by `row` and its axis ("B turn about x, y, z: y"), as its prefix shows it.
+pub fn xyz_fields(
+    ui: &mut egui::Ui,
+    row: &str,
+    values: &mut [f32; 3],
+    field: impl Fn(egui::DragValue<'_>) -> egui::DragValue<'_>,
+) {
+    ui.horizontal(|ui| {
+        ui.label(row);
+        for (axis, value) in ["x", "y", "z"].into_iter().zip(values.iter_mut()) {
+            let response = ui.add(field(
+                egui::DragValue::new(value).prefix(format!("{axis} ")),
+            ));
+            let (enabled, now) = (ui.is_enabled(), f64::from(*value));
+            response.widget_info(|| {
+                let mut info = egui::WidgetInfo::drag_value(enabled, now);
+                info.label = Some(format!("{row}: {axis}"));
+                info
+            });
+        }
+    });
+}
+
 /// A row of number fields for a point's coordinates (x, y and, in 3D, z), each named for
 /// screen readers ("origin x", ...); whether one changed.
 pub fn coords_editor(ui: &mut egui::Ui, label: &str, coords: &mut [f32]) -> bool {

@@ -4,7 +4,7 @@
 //! boxes' shadows on it.
 
 use bvhlab::glam::Vec3;
-use egui::{DragValue, Grid, RichText};
+use egui::{Grid, RichText};
 
 use crate::model::Action3d;
 use crate::model::obb_pair3d::{BoxPose3, CANDIDATES, ObbPair3, axis_name};
@@ -70,23 +70,16 @@ fn pose_editor(ui: &mut egui::Ui, name: &str, pose: &mut BoxPose3, part_obb: Opt
             -360.0..=360.0,
         ),
     ] {
-        ui.horizontal(|ui| {
-            // Each field is named by its row ("B turn about x, y, z") and its prefix ("x"):
-            // a screen reader says which box and which number.
-            let row = ui.label(format!("{name} {what}")).id;
-            for (axis, c) in ["x", "y", "z"].into_iter().zip(v.as_mut()) {
-                ui.add(
-                    DragValue::new(c)
-                        .speed(speed)
-                        .range(range.clone())
-                        .prefix(format!("{axis} "))
-                        .suffix(suffix)
-                        .max_decimals(3),
-                )
-                .labelled_by(row)
-                .on_hover_text(format!("Box {name}'s {what}, {axis}"));
-            }
+        // Each field is named by its row and axis ("B turn about x, y, z: x"): a screen
+        // reader says which box and which number.
+        let mut values = v.to_array();
+        super::xyz_fields(ui, &format!("{name} {what}"), &mut values, |d| {
+            d.speed(speed)
+                .range(range.clone())
+                .suffix(suffix)
+                .max_decimals(3)
         });
+        *v = Vec3::from_array(values);
     }
 }
 

@@ -1,0 +1,21 @@
+import { chromium } from 'playwright-core';
+import { BASE_ARGS } from './browser.mjs';
+const url = process.argv[2];
+const ctx = await chromium.launchPersistentContext('', { executablePath: '/usr/bin/chromium', headless: true, args: BASE_ARGS, viewport: { width: 1280, height: 720 } });
+const page = await ctx.newPage();
+await page.goto(url + '?mesh=bunny&fresh=1&volumes=brush&obbs=0,5,0,2,2,2,0,0,0,3.2,5,3.2,2,1,1,45,20,0');
+await page.waitForFunction(() => document.querySelectorAll('#lab-a11y *').length > 50, null, { timeout: 60000 });
+await page.waitForTimeout(2500);
+await page.evaluate(() => {
+  const e = [...document.querySelectorAll('#lab-a11y [role="checkbox"]')].find((e) => e.textContent.startsWith('Collision of two trees'));
+  e?.click();
+});
+await page.waitForTimeout(1500);
+const cdp = await ctx.newCDPSession(page);
+const { nodes } = await cdp.send('Accessibility.getFullAXTree');
+const interesting = nodes.filter((n) => !n.ignored && ['spinbutton', 'slider', 'button', 'checkbox', 'radio', 'textbox'].includes(n.role?.value));
+const names = interesting.map((n) => `${n.role.value}: ${n.name?.value ?? ''} ${n.value?.value ?? ''}`);
+const want = names.filter((s) => /centre|half|turn|axis|test|Collision|moved|B turned|brush|Separating|trees/.test(s));
+console.log(want.join('\n'));
+console.log('unnamed:', names.filter((s) => /^\w+: $/.test(s.trim() + ' ')).length);
+await ctx.close();
