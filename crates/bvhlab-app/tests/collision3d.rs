@@ -162,6 +162,16 @@ fn the_walk_is_stepped_test_by_test_and_drawn() {
         "both roots' edges"
     );
     assert!(shows(&h, "Nodes A 0 and B 0"));
+    // The pseudocode marks where the walk is: the roots overlap, so the larger is opened.
+    assert!(overlap, "the near copy's roots overlap");
+    assert!(
+        shows(&h, ">10             open the larger"),
+        "{:?}",
+        crate::common::labels(&h)
+            .iter()
+            .filter(|l| l.contains("open the larger"))
+            .collect::<Vec<_>>()
+    );
     // Step on to the first triangle pair: the counts so far follow the events.
     let first_pair = run
         .events
@@ -176,6 +186,7 @@ fn the_walk_is_stepped_test_by_test_and_drawn() {
     let so_far = run.so_far(first_pair + 1);
     assert_eq!(so_far.primitive_pairs, 1);
     assert!(shows(&h, "Triangles A "));
+    assert!(shows(&h, "> 8                 if (p.intersects(q))"));
     let lit: Vec<u32> = h.state().ui.view3d.drawn[0]
         .highlights
         .iter()
@@ -192,6 +203,7 @@ fn the_walk_is_stepped_test_by_test_and_drawn() {
     click(&mut h, "All tests (the answer)");
     settle(&mut h);
     assert_eq!(collision(&h).step, None);
+    assert!(shows(&h, ">11     return the pairs added"));
     assert!(
         labels(&h).iter().any(|l| l.contains("triangles meeting")),
         "the legend names it"

@@ -34,9 +34,66 @@ pub(super) fn stepper<V: Vector>(
         ui.label(format!("step {shown} of {total}"));
     });
     ui.label(describe(run, shown, primitive));
+    pseudocode(ui, current_line(run, shown));
     let now = run.so_far(shown);
     let all = run.so_far(total);
     counts(ui, now, all, run, primitive);
+}
+
+/// The walk as pseudocode (the core's `collide`, after Gottschalk, Lin and Manocha's OBBTree
+/// descent: open the larger node).
+const PSEUDOCODE: [&str; 11] = [
+    "collide(A, B)                            // the collision query",
+    "    stack = [(A.root, B.root)]",
+    "    while (stack not empty)",
+    "        (a, b) = stack.pop()",
+    "        if (!a.bv.overlaps(b.bv)) continue   // disjoint: cut off",
+    "        if (a and b are leaves)",
+    "            for (p in a.prims, q in b.prims)",
+    "                if (p.intersects(q)) add (p, q)",
+    "        else",
+    "            open the larger: push each child with the other",
+    "    return the pairs added",
+];
+
+/// The line of [`PSEUDOCODE`] the step shown is at.
+fn current_line<V: Vector>(run: &CollisionRun<V>, shown: usize) -> usize {
+    if shown >= run.events.len() {
+        return 10;
+    }
+    match shown.checked_sub(1).and_then(|i| run.events.get(i)) {
+        None => 1,
+        Some(Event::NodePairTest { overlap: false, .. }) => 4,
+        Some(Event::NodePairTest { overlap: true, .. }) => {
+            if matches!(run.events.get(shown), Some(Event::PairTest { .. })) {
+                5
+            } else {
+                9
+            }
+        }
+        Some(_) => 7,
+    }
+}
+
+/// The pseudocode, the line at the step marked with `>` (not by colour alone).
+fn pseudocode(ui: &mut egui::Ui, current: usize) {
+    egui::Frame::NONE
+        .fill(ui.visuals().extreme_bg_color)
+        .inner_margin(egui::Margin::same(4))
+        .show(ui, |ui| {
+            for (i, line) in PSEUDOCODE.iter().enumerate() {
+                let text = format!(
+                    "{}{:>2} {line}",
+                    if i == current { ">" } else { " " },
+                    i + 1
+                );
+                let mut rich = egui::RichText::new(text).monospace();
+                if i == current {
+                    rich = rich.background_color(ui.visuals().selection.bg_fill);
+                }
+                ui.label(rich);
+            }
+        });
 }
 
 /// The event just shown, in words.
