@@ -40,7 +40,7 @@ pub(super) fn stepper<V: Vector>(
     counts(ui, now, all, run, primitive);
 }
 
-/// The walk as pseudocode (the core's `collide`, after Gottschalk, Lin and Manocha's OBBTree
+/// The walk as pseudocode (the core's `collide`, after Gottschalk, Lin and Manocha's `OBBTree`
 /// descent: open the larger node).
 const PSEUDOCODE: [&str; 11] = [
     "collide(A, B)                            // the collision query",
