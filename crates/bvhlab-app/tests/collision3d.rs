@@ -167,7 +167,7 @@ fn the_walk_is_stepped_test_by_test_and_drawn() {
     assert!(
         shows(&h, ">10             open the larger"),
         "{:?}",
-        crate::common::labels(&h)
+        labels(&h)
             .iter()
             .filter(|l| l.contains("open the larger"))
             .collect::<Vec<_>>()
