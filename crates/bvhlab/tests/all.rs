@@ -13,6 +13,7 @@ mod batch_queries;
 mod bsp;
 mod bvh4_queries;
 mod bvh4_range_whole_nodes;
+mod bvh4_updates;
 mod bvh_build;
 mod bvh_build_job;
 mod bvh_degenerate;

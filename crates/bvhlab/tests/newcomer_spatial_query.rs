@@ -15,7 +15,11 @@ use rand_chacha::ChaCha8Rng;
 use crate::batch_queries::{random_vec3, triangles_and_rays};
 
 /// Everything a program might ask of "some structure", through the trait alone.
-fn answers(index: &impl SpatialQuery<Vec3>, rays: &[Ray3], points: &[Vec3]) -> Vec<String> {
+pub(crate) fn answers(
+    index: &impl SpatialQuery<Vec3>,
+    rays: &[Ray3],
+    points: &[Vec3],
+) -> Vec<String> {
     let mut out = Vec::new();
     for ray in rays {
         out.push(format!("{:?}", index.ray_first_hit(ray, f32::INFINITY)));

@@ -60,7 +60,10 @@ use header::{Header, checksum};
 /// Version 2 (issue 28): a primitive with a NaN or infinite coordinate is never an answer, so
 /// the 2^D trees lost their list of such primitives and a grid's unplaced list no longer holds
 /// them.
-pub const FORMAT_VERSION: u32 = 2;
+///
+/// Version 3 (issue 33): a [`Bvh4`](crate::Bvh4) keeps the primitives it leaves out, so that
+/// its `remove` gives them back.
+pub const FORMAT_VERSION: u32 = 3;
 
 /// The structure as bytes: the header, then the payload.
 ///

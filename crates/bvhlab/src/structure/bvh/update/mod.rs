@@ -13,8 +13,8 @@
 //! Only AABB trees: a box node is the union of its children's boxes, so a change refits its
 //! ancestors from their children alone. A sphere or OBB node is fitted to every vertex
 //! below it, so the same change would refit O(n) vertices at each ancestor: those trees
-//! are refitted ([`Bvh::refit`]) or rebuilt. [`Bvh4`](super::Bvh4) is a copy of a tree:
-//! after an update, make it again with [`Bvh4::from_bvh`](super::Bvh4::from_bvh).
+//! are refitted ([`Bvh::refit`]) or rebuilt. [`Bvh4`](super::Bvh4) has its own
+//! [`insert`](super::Bvh4::insert) and [`remove`](super::Bvh4::remove) (`wide/update.rs`).
 //!
 //! What each call costs, beside the other structures' updates, is in
 //! [`update`](crate::structure::update#what-an-update-costs-structure-by-structure).

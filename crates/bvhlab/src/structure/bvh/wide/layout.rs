@@ -97,6 +97,17 @@ impl Bvh4Node {
     }
 }
 
+/// The primitives of `prims` a build leaves out (a NaN or infinite coordinate), with their
+/// indices.
+fn left_out_of<P: Primitive>(prims: &[P]) -> Vec<(u32, P)> {
+    prims
+        .iter()
+        .enumerate()
+        .filter(|(_, p)| !p.has_finite_coordinates())
+        .map(|(i, p)| (i as u32, *p))
+        .collect()
+}
+
 /// A 4-wide AABB tree collapsed from a built [`AabbTree`], answering
 /// [`ray_first_hit`](Self::ray_first_hit) and [`closest_point`](Self::closest_point) exactly
 /// as the binary tree (and brute force) does, bit for bit, but faster. It holds its own copy
@@ -139,6 +150,9 @@ pub struct Bvh4<P: Primitive> {
     pub(super) input_len: usize,
     /// The SAH cost of the wide tree when it was built, for [`Bvh4::needs_rebuild`].
     pub(super) build_sah_cost: Option<f32>,
+    /// The primitives left out for a NaN or infinite coordinate, with their input indices:
+    /// kept so that [`Bvh4::remove`] gives them back as the binary tree does.
+    pub(super) left_out: Vec<(u32, P)>,
 }
 
 impl<P: Primitive> Bvh4<P> {
@@ -156,7 +170,7 @@ impl<P: Primitive> Bvh4<P> {
             return Self::from_bvh(&Bvh::build_with(prims, options));
         }
         let parts = build_sah_box_parts::<Aabb<P::Point>, P>(prims, options);
-        Self::from_parts(parts, collapse, prims.len())
+        Self::from_parts(parts, collapse, prims)
     }
 
     /// [`build`](Self::build) on every core (the `parallel` feature): the same tree, bit for
@@ -175,14 +189,14 @@ impl<P: Primitive> Bvh4<P> {
             return Self::from_bvh(&Bvh::build_with(prims, options));
         }
         let parts = build_sah_box_parts_parallel::<Aabb<P::Point>, P>(prims, options);
-        Self::from_parts(parts, collapse_parallel, prims.len())
+        Self::from_parts(parts, collapse_parallel, prims)
     }
 
-    /// The binary tree's parts (built over `input_len` primitives), collapsed by `collapse`.
+    /// The binary tree's parts (built over `prims`), collapsed by `collapse`.
     fn from_parts(
         parts: TreeParts<Aabb<P::Point>, P>,
         collapse: Collapse<P::Point>,
-        input_len: usize,
+        prims: &[P],
     ) -> Self {
         let (nodes, depth) = collapse(&parts.nodes);
         Self {
@@ -190,8 +204,9 @@ impl<P: Primitive> Bvh4<P> {
             leaf_prims: parts.leaf_prims,
             leaf_ids: parts.leaf_ids,
             depth,
-            input_len,
+            input_len: prims.len(),
             build_sah_cost: None,
+            left_out: left_out_of(prims),
         }
         .with_build_cost()
     }
@@ -207,6 +222,7 @@ impl<P: Primitive> Bvh4<P> {
             depth,
             input_len: bvh.prims.len(),
             build_sah_cost: None,
+            left_out: left_out_of(&bvh.prims),
         }
         .with_build_cost()
     }

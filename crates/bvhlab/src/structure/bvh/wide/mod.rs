@@ -13,6 +13,7 @@
 //! - `range_lanes.rs`: the range walk's lane tests (may touch the region, lies inside it).
 //! - `stack.rs`: the stack the nearest-first walks share, sized per tree.
 //! - `refit.rs`: [`Bvh4::refit`] after the primitives moved, and the SAH cost it reports.
+//! - `update.rs`: [`Bvh4::insert`] and [`Bvh4::remove`], without a rebuild.
 //! - `validate.rs`: [`Bvh4::validate`], the invariants (every box inside its parent's).
 //!
 //! The wide tree answers what its callers ask most, without the lab's events: it implements
@@ -21,7 +22,7 @@
 //! against (`query_traits.rs`), but not [`SpatialIndex`](crate::structure::SpatialIndex),
 //! whose `_observed` forms report every node by its index and whose event grammar is written
 //! for binary nodes (a wide node's leaf lanes are no nodes at all), and it keeps no copy of
-//! the primitives in input order. Its queries are also inherent methods with the traits'
+//! the primitives in input order (only those it leaves out, for [`Bvh4::remove`]). Its queries are also inherent methods with the traits'
 //! names and answers; the lab steps through the binary tree.
 
 mod any_all_hits;
@@ -36,6 +37,7 @@ mod range_lanes;
 mod ray;
 mod refit;
 mod stack;
+mod update;
 mod validate;
 
 pub use layout::{Bvh4, Bvh4Node, WIDTH};
