@@ -49,8 +49,9 @@ fn fail<T>(message: String) -> Result<T, ValidationError> {
 }
 
 impl<P: Primitive> Bvh4<P> {
-    /// Checks that every primitive id is distinct and within the input, each primitive
-    /// finite and keeping the [`Primitive`] contract's enclosure; every wide node is reached
+    /// Checks that every primitive of the input is indexed or left out, once, by a distinct
+    /// id within the input: an indexed one finite and keeping the [`Primitive`] contract's
+    /// enclosure, a left-out one not finite; every wide node is reached
     /// once from the root through child indices that point forward; the recorded depth is the
     /// tree's (the walks size their stacks by it) and at most [`MAX_DEPTH`]; the leaf lanes
     /// cover the leaf order exactly once; every leaf lane's box contains its primitives' boxes
@@ -67,9 +68,25 @@ impl<P: Primitive> Bvh4<P> {
                 self.leaf_prims.len()
             ));
         }
+        if self.leaf_ids.len() + self.left_out.len() != self.input_len {
+            return fail(format!(
+                "{} primitives indexed and {} left out, but {} given",
+                self.leaf_ids.len(),
+                self.left_out.len(),
+                self.input_len
+            ));
+        }
+        for &(id, prim) in &self.left_out {
+            if id as usize >= self.input_len || prim.has_finite_coordinates() {
+                return fail(format!(
+                    "primitive {id} is left out, but is finite or out of range"
+                ));
+            }
+        }
         // Sorted rather than flagged in a table of `input_len` entries: a loaded file's
         // `input_len` is only a number, and must not size an allocation.
         let mut ids = self.leaf_ids.clone();
+        ids.extend(self.left_out.iter().map(|&(id, _)| id));
         ids.sort_unstable();
         if let Some(&[id, _]) = ids.windows(2).find(|pair| pair[0] == pair[1]) {
             return fail(format!("primitive {id} is in more than one leaf slot"));
