@@ -61,47 +61,7 @@ impl<P: Primitive> Bvh4<P> {
     /// # Errors
     /// A [`ValidationError`] saying what is wrong.
     pub fn validate(&self) -> Result<(), ValidationError> {
-        if self.leaf_ids.len() != self.leaf_prims.len() {
-            return fail(format!(
-                "{} leaf ids for {} leaf primitives",
-                self.leaf_ids.len(),
-                self.leaf_prims.len()
-            ));
-        }
-        if self.leaf_ids.len() + self.left_out.len() != self.input_len {
-            return fail(format!(
-                "{} primitives indexed and {} left out, but {} given",
-                self.leaf_ids.len(),
-                self.left_out.len(),
-                self.input_len
-            ));
-        }
-        for &(id, prim) in &self.left_out {
-            if id as usize >= self.input_len || prim.has_finite_coordinates() {
-                return fail(format!(
-                    "primitive {id} is left out, but is finite or out of range"
-                ));
-            }
-        }
-        // Sorted rather than flagged in a table of `input_len` entries: a loaded file's
-        // `input_len` is only a number, and must not size an allocation.
-        let mut ids = self.leaf_ids.clone();
-        ids.extend(self.left_out.iter().map(|&(id, _)| id));
-        ids.sort_unstable();
-        if let Some(&[id, _]) = ids.windows(2).find(|pair| pair[0] == pair[1]) {
-            return fail(format!("primitive {id} is in more than one leaf slot"));
-        }
-        for (slot, (&id, prim)) in self.leaf_ids.iter().zip(&self.leaf_prims).enumerate() {
-            if id as usize >= self.input_len {
-                return fail(format!(
-                    "leaf slot {slot} names primitive {id}, out of range"
-                ));
-            }
-            if !prim.has_finite_coordinates() {
-                return fail(format!("primitive {id} is non-finite but indexed"));
-            }
-            check_primitive_contract(id as usize, prim)?;
-        }
+        self.check_primitives()?;
         let mut reached = vec![false; self.nodes.len()];
         let mut covered = vec![false; self.leaf_prims.len()];
         let mut stack = if self.nodes.is_empty() {
@@ -165,6 +125,54 @@ impl<P: Primitive> Bvh4<P> {
                 "the tree is {depth} wide levels deep, but records {} (at most {MAX_DEPTH})",
                 self.depth
             ));
+        }
+        Ok(())
+    }
+}
+
+impl<P: Primitive> Bvh4<P> {
+    /// The primitives' part of [`Bvh4::validate`]: ids, finiteness and the contract.
+    fn check_primitives(&self) -> Result<(), ValidationError> {
+        if self.leaf_ids.len() != self.leaf_prims.len() {
+            return fail(format!(
+                "{} leaf ids for {} leaf primitives",
+                self.leaf_ids.len(),
+                self.leaf_prims.len()
+            ));
+        }
+        if self.leaf_ids.len() + self.left_out.len() != self.input_len {
+            return fail(format!(
+                "{} primitives indexed and {} left out, but {} given",
+                self.leaf_ids.len(),
+                self.left_out.len(),
+                self.input_len
+            ));
+        }
+        for &(id, prim) in &self.left_out {
+            if id as usize >= self.input_len || prim.has_finite_coordinates() {
+                return fail(format!(
+                    "primitive {id} is left out, but is finite or out of range"
+                ));
+            }
+        }
+        // Sorted rather than flagged in a table of `input_len` entries: a loaded file's
+        // `input_len` is only a number, and must not size an allocation.
+        let mut ids = self.leaf_ids.clone();
+        ids.extend(self.left_out.iter().map(|&(id, _)| id));
+        ids.sort_unstable();
+        if let Some(&[id, _]) = ids.windows(2).find(|pair| pair[0] == pair[1]) {
+            return fail(format!("primitive {id} is in more than one leaf slot"));
+        }
+        for (slot, (&id, prim)) in self.leaf_ids.iter().zip(&self.leaf_prims).enumerate() {
+            if id as usize >= self.input_len {
+                return fail(format!(
+                    "leaf slot {slot} names primitive {id}, out of range"
+                ));
+            }
+            if !prim.has_finite_coordinates() {
+                return fail(format!("primitive {id} is non-finite but indexed"));
+            }
+            check_primitive_contract(id as usize, prim)?;
         }
         Ok(())
     }
