@@ -57,6 +57,32 @@ fn updates(c: &mut Criterion) {
             BatchSize::LargeInput,
         );
     });
+    group.bench_function("Bvh4: build", |b| {
+        b.iter(|| Bvh4::build(black_box(&tris)));
+    });
+    group.bench_function("Bvh4: insert one by one", |b| {
+        b.iter(|| {
+            let mut tree = Bvh4::build(&[]);
+            for &t in &tris {
+                tree.insert(black_box(t));
+            }
+            tree
+        });
+    });
+    let wide = Bvh4::build(&tris);
+    group.bench_function("Bvh4: remove and reinsert a hundredth", |b| {
+        b.iter_batched(
+            || wide.clone(),
+            |mut tree| {
+                for _ in 0..hundredth {
+                    let removed = tree.remove(0).expect("in range");
+                    tree.insert(removed.prim);
+                }
+                tree
+            },
+            BatchSize::LargeInput,
+        );
+    });
     let shift = Vec3::splat(0.01 * extent);
     group.bench_function("AABB tree: move a hundredth (replace)", |b| {
         b.iter_batched(

@@ -150,23 +150,80 @@ impl<P: Primitive> Bvh4<P> {
     }
 
     /// Takes leaf slot `slot` out of the lane that holds it, then lays the tree out again.
+    ///
+    /// The slot moves to its lane's end, which leaves the leaf order (the slots after it
+    /// move down one, and the leaf lanes past it with them); the lane's box and those of
+    /// its ancestors are fitted again. A lane left empty is dropped; a node left with no
+    /// lane at all is pruned by laying the whole tree out again ([`Bvh4::lay_out`]).
     fn take_out(&mut self, slot: u32) {
+        let Some((at, lane)) = self.leaf_lane_of(slot) else {
+            return;
+        };
+        let node = &mut self.nodes[at];
+        let end = node.child[lane] + node.count[lane] - 1;
+        self.leaf_prims.swap(slot as usize, end as usize);
+        self.leaf_ids.swap(slot as usize, end as usize);
+        node.count[lane] -= 1;
+        let emptied = node.count[lane] == 0;
+        if emptied {
+            clear_lane(node, lane);
+            if !(0..WIDTH).any(|l| node.is_used(l)) {
+                self.lay_out();
+                return;
+            }
+        }
+        self.leaf_prims.remove(end as usize);
+        self.leaf_ids.remove(end as usize);
         for node in &mut self.nodes {
             for lane in 0..WIDTH {
-                let (start, count) = (node.child[lane], node.count[lane]);
-                if count > 0 && (start..start + count).contains(&slot) {
-                    // The slot moves to the lane's end, which is then dropped.
-                    let end = (start + count - 1) as usize;
-                    self.leaf_prims.swap(slot as usize, end);
-                    self.leaf_ids.swap(slot as usize, end);
-                    node.count[lane] -= 1;
-                    if node.count[lane] == 0 {
-                        clear_lane(node, lane);
-                    }
-                    self.lay_out();
-                    return;
+                if node.count[lane] > 0 && node.child[lane] > end {
+                    node.child[lane] -= 1;
                 }
             }
+        }
+        if emptied {
+            self.fit_ancestors(at);
+        } else {
+            self.fit_path(at, lane);
+        }
+    }
+
+    /// The node and lane whose leaf range holds `slot`.
+    fn leaf_lane_of(&self, slot: u32) -> Option<(usize, usize)> {
+        self.nodes.iter().enumerate().find_map(|(at, node)| {
+            (0..WIDTH)
+                .find(|&lane| {
+                    let (start, count) = (node.child[lane], node.count[lane]);
+                    count > 0 && (start..start + count).contains(&slot)
+                })
+                .map(|lane| (at, lane))
+        })
+    }
+
+    /// Fits leaf lane `lane` of node `at` to its primitives again, then each ancestor's lane
+    /// to its child node, up to the root.
+    fn fit_path(&mut self, at: usize, lane: usize) {
+        let node = &mut self.nodes[at];
+        let start = node.child[lane] as usize;
+        let leaf = &self.leaf_prims[start..start + node.count[lane] as usize];
+        node.set_lane(lane, &leaf_box(leaf));
+        self.fit_ancestors(at);
+    }
+
+    /// Fits each ancestor's lane of node `at` to its child node again, up to the root.
+    fn fit_ancestors(&mut self, at: usize) {
+        let mut child = at;
+        while child != 0 {
+            // Parents come before their children: the one lane that points to `child`.
+            let parent = self.nodes[..child].iter().enumerate().find_map(|(i, n)| {
+                (0..WIDTH)
+                    .find(|&l| n.count[l] == 0 && n.is_used(l) && n.child[l] as usize == child)
+                    .map(|l| (i, l))
+            });
+            let Some((i, l)) = parent else { return };
+            let fitted = node_box::<P>(&self.nodes[child]);
+            self.nodes[i].set_lane(l, &fitted);
+            child = i;
         }
     }
 
