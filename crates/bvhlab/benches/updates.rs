@@ -13,7 +13,8 @@ use std::hint::black_box;
 use bvhlab::glam::Vec3;
 use bvhlab::prelude::*;
 use bvhlab::structure::bvh::{BvhOptions, SplitMethod};
-use criterion::{BatchSize, Criterion, criterion_group, criterion_main};
+use criterion::measurement::WallTime;
+use criterion::{BatchSize, BenchmarkGroup, Criterion, criterion_group, criterion_main};
 use workload::shared_mesh;
 
 /// How many triangles, spread over the whole mesh.
@@ -57,32 +58,7 @@ fn updates(c: &mut Criterion) {
             BatchSize::LargeInput,
         );
     });
-    group.bench_function("Bvh4: build", |b| {
-        b.iter(|| Bvh4::build(black_box(&tris)));
-    });
-    group.bench_function("Bvh4: insert one by one", |b| {
-        b.iter(|| {
-            let mut tree = Bvh4::build(&[]);
-            for &t in &tris {
-                tree.insert(black_box(t));
-            }
-            tree
-        });
-    });
-    let wide = Bvh4::build(&tris);
-    group.bench_function("Bvh4: remove and reinsert a hundredth", |b| {
-        b.iter_batched(
-            || wide.clone(),
-            |mut tree| {
-                for _ in 0..hundredth {
-                    let removed = tree.remove(0).expect("in range");
-                    tree.insert(removed.prim);
-                }
-                tree
-            },
-            BatchSize::LargeInput,
-        );
-    });
+    bvh4_updates(&mut group, &tris, hundredth);
     let shift = Vec3::splat(0.01 * extent);
     group.bench_function("AABB tree: move a hundredth (replace)", |b| {
         b.iter_batched(
@@ -129,6 +105,36 @@ fn updates(c: &mut Criterion) {
         );
     });
     group.finish();
+}
+
+/// `Bvh4`'s build, inserts and removes, beside the AABB tree's in the same group.
+fn bvh4_updates(group: &mut BenchmarkGroup<'_, WallTime>, tris: &[Triangle3], hundredth: usize) {
+    group.bench_function("Bvh4: build", |b| {
+        b.iter(|| Bvh4::build(black_box(tris)));
+    });
+    group.bench_function("Bvh4: insert one by one", |b| {
+        b.iter(|| {
+            let mut tree = Bvh4::build(&[]);
+            for &t in tris {
+                tree.insert(black_box(t));
+            }
+            tree
+        });
+    });
+    let wide = Bvh4::build(tris);
+    group.bench_function("Bvh4: remove and reinsert a hundredth", |b| {
+        b.iter_batched(
+            || wide.clone(),
+            |mut tree| {
+                for _ in 0..hundredth {
+                    let removed = tree.remove(0).expect("in range");
+                    tree.insert(removed.prim);
+                }
+                tree
+            },
+            BatchSize::LargeInput,
+        );
+    });
 }
 
 criterion_group!(benches, updates);
