@@ -20,7 +20,7 @@ const PART_TRIANGLE_CAP: usize = 200_000;
 /// The slab colours, x, y and z.
 pub const SLAB_COLORS: [egui::Color32; 3] = [colors::SLAB_X, colors::SLAB_Y, colors::SLAB_Z];
 
-/// The legend's entries for what [`draw_volumes`] draws: the brush's part, the volumes
+/// The legend's entries for what `draw_volumes` draws: the brush's part, the volumes
 /// switched on, and the three slabs.
 pub fn legend(lab: &Lab3d) -> Vec<(egui::Color32, &'static str)> {
     let Some(part) = lab.part_fits() else {
