@@ -15,7 +15,7 @@ const cdp = await ctx.newCDPSession(page);
 const { nodes } = await cdp.send('Accessibility.getFullAXTree');
 const interesting = nodes.filter((n) => !n.ignored && ['spinbutton', 'slider', 'button', 'checkbox', 'radio', 'textbox'].includes(n.role?.value));
 const names = interesting.map((n) => `${n.role.value}: ${n.name?.value ?? ''} ${n.value?.value ?? ''}`);
-const want = names.filter((s) => /centre|half|turn|axis|test|Collision|moved|B turned|brush|Separating|trees/.test(s));
+const want = names.filter((s) => /centre|half|turn|axis|test|Collision|moved|B turned|brush|Separating|trees|A left|A right/.test(s));
 console.log(want.join('\n'));
 console.log('unnamed:', names.filter((s) => /^\w+: $/.test(s.trim() + ' ')).length);
 await ctx.close();

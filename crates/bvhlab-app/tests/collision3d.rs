@@ -217,3 +217,28 @@ fn the_walk_is_stepped_test_by_test_and_drawn() {
             .is_err()
     );
 }
+
+#[test]
+fn an_empty_part_still_turns_the_query_on_and_a_brush_asked_for_starts_on_the_mesh() {
+    // The brush off the mesh holds nothing: the query still turns on, and says so.
+    let mut h = brushed(Vec3::splat(500.0), 1.0);
+    assert!(three(&h).part_fits().expect("shown").fits.is_none());
+    let c = collision(&h);
+    assert!(c.is_valid(), "{c:?}");
+    assert!(shows(&h, "The part is empty"));
+    // The address's volumes=brush, with no point: the point the lab puts beside a new mesh
+    // goes onto it, so the brush holds triangles from the start.
+    let mut lab = bvhlab_app::model::Lab::default();
+    let setup = bvhlab_app::model::Setup {
+        mesh: Some("bunny".to_owned()),
+        volumes: Some(bvhlab_app::model::volumes3d::Part3d::Brush),
+        ..bvhlab_app::model::Setup::default()
+    };
+    assert!(lab.apply_setup(&setup, "the address").is_empty());
+    crate::common::tick_lab(&mut lab);
+    lab.apply(Action3d::Frame { aspect: 1.5 }.into())
+        .expect("framed");
+    crate::common::tick_lab(&mut lab);
+    let part = lab.three().part_fits().expect("shown");
+    assert!(!part.triangles.is_empty(), "the brush starts on the mesh");
+}

@@ -28,7 +28,9 @@ impl Collision3d {
     /// A copy moved half the part's width along x and turned a little, so that part of it
     /// still meets A.
     pub fn beside(part: &Aabb3) -> Self {
-        let size = part.max - part.min;
+        // An empty part (no fits yet) has an inverted box: the copy starts on A.
+        let size = (part.max - part.min).max(Vec3::ZERO);
+        let size = if size.is_finite() { size } else { Vec3::ZERO };
         Self {
             offset: Vec3::new(size.x * 0.5, size.y * 0.1, 0.0),
             degrees: Vec3::new(0.0, 30.0, 0.0),

@@ -308,8 +308,16 @@ impl Lab3d {
             self.ray = Ray3::new(self.camera.eye(), self.camera.basis().forward).ok();
         }
         if self.point.is_none() {
-            // Beside the mesh, to the right in the view, where the gizmo is on screen.
-            self.point = Some(self.camera.target + self.camera.basis().right * size * 0.35);
+            // Beside the mesh, to the right in the view, where the gizmo is on screen; on
+            // it when the brush follows the point (`volumes=brush`), so the brush holds
+            // triangles from the start.
+            let beside = self.camera.target + self.camera.basis().right * size * 0.35;
+            let brushing = self.volumes.shown && self.volumes.part == Part3d::Brush;
+            self.point = Some(if brushing {
+                closest_on(mesh.mesh.triangles(), beside).unwrap_or(beside)
+            } else {
+                beside
+            });
         }
     }
 
