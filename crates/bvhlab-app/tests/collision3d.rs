@@ -221,7 +221,7 @@ fn the_walk_is_stepped_test_by_test_and_drawn() {
 #[test]
 fn an_empty_part_still_turns_the_query_on_and_a_brush_asked_for_starts_on_the_mesh() {
     // The brush off the mesh holds nothing: the query still turns on, and says so.
-    let mut h = brushed(Vec3::splat(500.0), 1.0);
+    let h = brushed(Vec3::splat(500.0), 1.0);
     assert!(three(&h).part_fits().expect("shown").fits.is_none());
     let c = collision(&h);
     assert!(c.is_valid(), "{c:?}");
