@@ -5,7 +5,17 @@ use bvhlab::Vector;
 use bvhlab::structure::Event;
 use egui::Grid;
 
-use crate::model::collision::{BRUTE_FORCE_PAIRS_CAP, CollisionRun, CollisionSoFar};
+use crate::model::collision::{BRUTE_FORCE_PAIRS_CAP, CollisionRun, CollisionSoFar, CollisionTree};
+
+/// Which BVH both sides are built as, one radio button each.
+pub(super) fn tree_choice(ui: &mut egui::Ui, tree: &mut CollisionTree) {
+    ui.horizontal_wrapped(|ui| {
+        ui.label("Both trees are");
+        for kind in CollisionTree::ALL {
+            ui.radio_value(tree, kind, kind.label());
+        }
+    });
+}
 
 /// The walk, step by step: the buttons (which set `step`: `None` is the whole walk), the
 /// step in words, and the counts so far and in all beside brute force's; `primitive` names

@@ -4,7 +4,6 @@
 use bvhlab::glam::Vec2;
 
 use crate::model::Action2d;
-use crate::model::collision::CollisionTree;
 use crate::model::collision2d::Collision2d;
 use crate::ui_state::Cx;
 
@@ -26,12 +25,7 @@ pub(super) fn collision_section(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
         return;
     };
     let mut edited = collision;
-    ui.horizontal_wrapped(|ui| {
-        ui.label("Both trees are");
-        for tree in CollisionTree::ALL {
-            ui.radio_value(&mut edited.tree, tree, tree.label());
-        }
-    });
+    super::collision::tree_choice(ui, &mut edited.tree);
     match lab.collision_run().and_then(|c| c.run.as_ref()) {
         None => {
             ui.label(

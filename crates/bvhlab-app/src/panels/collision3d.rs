@@ -4,7 +4,6 @@
 //! triangle pairs are tested and which meet), with its counts beside brute force's.
 
 use crate::model::Action3d;
-use crate::model::collision::CollisionTree;
 use crate::model::collision3d::{Collision3d, MAX_COLLISION_TRIANGLES};
 use crate::ui_state::Cx;
 
@@ -33,12 +32,7 @@ pub(super) fn collision_section(cx: &mut Cx<'_>, ui: &mut egui::Ui) {
         return;
     };
     let mut edited = collision;
-    ui.horizontal_wrapped(|ui| {
-        ui.label("Both trees are");
-        for tree in CollisionTree::ALL {
-            ui.radio_value(&mut edited.tree, tree, tree.label());
-        }
-    });
+    super::collision::tree_choice(ui, &mut edited.tree);
     pose_editor(ui, &mut edited);
     let run = lab.collision_run().and_then(|c| c.run.as_ref());
     match run {
