@@ -70,12 +70,11 @@ pub(super) fn draw_sat(lab: &Lab3d, d: &mut Draw3d) {
         color: rgba(Color32::GRAY, 1.0),
         width: 1.5,
     });
-    let reach = below;
     for (obb, (lo, hi), shade, shift) in [
         (&a, test.interval_a, SHADOW_A, 0.03),
         (&b, test.interval_b, SHADOW_B, -0.03),
     ] {
-        let offset = across * reach * shift;
+        let offset = across * below * shift;
         d.overlay.push(Segment {
             a: at(lo) + offset,
             b: at(hi) + offset,

@@ -4,7 +4,9 @@
 //! which primitive pairs are tested and which meet), beside brute force over every pair.
 //! Generic over the primitive: segments in 2D, triangles in 3D.
 
-use bvhlab::structure::{Event, NodeOutline, Outline, QueryCost, Recorder, SpatialIndex};
+use bvhlab::structure::{
+    BruteForce, Event, NodeOutline, Outline, QueryCost, Recorder, SpatialIndex,
+};
 use bvhlab::{AabbTree, ObbTree, Primitive, SphereTree};
 
 /// Which BVH both sides are built as.
@@ -108,7 +110,9 @@ impl<V: bvhlab::Vector> CollisionRun<V> {
             CollisionTree::Obb => build_and_collide::<ObbTree<P>, P>(a, b, &mut recorder),
         };
         let brute_tests = a.len() as u64 * b.len() as u64;
-        let brute = (brute_tests <= BRUTE_FORCE_PAIRS_CAP).then(|| brute_force(a, b));
+        // The core's brute force: every pair tested with the primitives' own test.
+        let brute = (brute_tests <= BRUTE_FORCE_PAIRS_CAP)
+            .then(|| BruteForce::build(a).collide(&BruteForce::build(b)));
         Self {
             tree,
             nodes_a,
@@ -156,19 +160,4 @@ impl<V: bvhlab::Vector> CollisionRun<V> {
     pub fn agrees(&self) -> Option<bool> {
         self.brute.as_ref().map(|b| *b == self.pairs)
     }
-}
-
-/// Every pair of a primitive of `a` and one of `b` that share a point, ascending: each pair
-/// tested with the core's own primitive test.
-pub fn brute_force<P: Primitive>(a: &[P], b: &[P]) -> Vec<(usize, usize)> {
-    let finite = |p: &&P| p.has_finite_coordinates();
-    let mut pairs = Vec::new();
-    for (i, pa) in a.iter().enumerate().filter(|(_, p)| finite(p)) {
-        for (j, pb) in b.iter().enumerate().filter(|(_, p)| finite(p)) {
-            if pa.intersects(pb) {
-                pairs.push((i, j));
-            }
-        }
-    }
-    pairs
 }

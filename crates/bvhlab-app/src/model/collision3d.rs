@@ -56,11 +56,13 @@ impl Collision3d {
     }
 }
 
-/// What a run was made from: the mesh's revision, the part's triangles, the pose and kind.
-#[derive(Clone, Debug, PartialEq)]
+/// What a run was made from: the part (by its [`PartFits::generation`], which follows the
+/// mesh's revisions too), the pose and the kind.
+///
+/// [`PartFits::generation`]: super::volumes3d::PartFits::generation
+#[derive(Clone, Copy, Debug, PartialEq)]
 struct RunKey {
-    revision: u64,
-    part: Vec<u32>,
+    part: u64,
     offset: [u32; 3],
     degrees: [u32; 3],
     tree: CollisionTree,
@@ -81,23 +83,21 @@ pub struct CollisionCache {
 }
 
 impl CollisionCache {
-    /// Brings the run up to date with the mesh's `triangles` (of `revision`), the `part`'s
-    /// indices into them, and `collision`.
+    /// Brings the run up to date with the mesh's `triangles`, the `part`'s indices into them
+    /// (selected for the `generation`-th time), and `collision`.
     pub fn refresh(
         &mut self,
         triangles: &[Triangle3],
-        revision: u64,
-        part: &[u32],
+        (part, generation): (&[u32], u64),
         collision: &Collision3d,
     ) {
         let key = RunKey {
-            revision,
-            part: part.to_vec(),
+            part: generation,
             offset: collision.offset.to_array().map(f32::to_bits),
             degrees: collision.degrees.to_array().map(f32::to_bits),
             tree: collision.tree,
         };
-        if self.key.as_ref() == Some(&key) {
+        if self.key == Some(key) {
             return;
         }
         self.key = Some(key);

@@ -236,12 +236,9 @@ impl Lab3d {
             self.part_fits
                 .refresh(&mesh.mesh, revision, part, point, radius);
             if let Some(collision) = &self.collision {
-                self.collision_run.refresh(
-                    mesh.mesh.triangles(),
-                    revision,
-                    &self.part_fits.triangles,
-                    collision,
-                );
+                let part = (&self.part_fits.triangles[..], self.part_fits.generation);
+                self.collision_run
+                    .refresh(mesh.mesh.triangles(), part, collision);
             }
         }
         let triangles = mesh.mesh.triangles();

@@ -113,6 +113,9 @@ type FitsKey = (u64, Part3d, Option<[u32; 3]>, u32);
 #[derive(Clone, Debug, Default)]
 pub struct PartFits {
     key: Option<FitsKey>,
+    /// Counts the times the part was selected again: what is derived from the part (the
+    /// collision query) is made again when it changes.
+    pub generation: u64,
     /// The triangles selected, by index.
     pub triangles: Vec<u32>,
     /// How many distinct vertices they have.
@@ -145,6 +148,7 @@ impl PartFits {
             return;
         }
         self.key = Some(key);
+        self.generation += 1;
         self.triangles = selected_triangles(mesh, part, point, radius);
         let vertices = selected_vertices(mesh, &self.triangles);
         self.vertices = vertices.len();
