@@ -13,7 +13,7 @@
 
 use rayon::prelude::*;
 
-use super::layout::{Bvh4Node, WIDTH, collapse, collapse_from, lanes_of};
+use super::layout::{Bvh4Node, Lanes, WIDTH, collapse, collapse_from, lanes_of};
 use crate::Vector;
 use crate::structure::bvh::layout::BvhNode;
 use crate::volume::Aabb;
@@ -103,9 +103,9 @@ impl Piece {
 /// Collapses the wide subtree whose root has the binary nodes `root_lanes` as lanes, over
 /// about `size` binary nodes (the lanes' ids and the size bound where each lane's binary
 /// subtree ends, give or take the few inner nodes the lanes replaced).
-fn piece<V: Vector>(binary: &[BvhNode<Aabb<V>>], root_lanes: Vec<u32>, size: usize) -> Piece {
+fn piece<V: Vector>(binary: &[BvhNode<Aabb<V>>], root_lanes: Lanes, size: usize) -> Piece {
     if size < SUBTREE {
-        let (nodes, depth) = collapse_from(binary, root_lanes);
+        let (nodes, depth) = collapse_from(binary, root_lanes, size);
         return Piece::Serial(nodes, depth);
     }
     let start = root_lanes[0] as usize;

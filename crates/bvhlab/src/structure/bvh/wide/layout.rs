@@ -21,6 +21,8 @@
 use super::collapse_parallel::collapse_parallel;
 #[cfg(feature = "parallel")]
 use crate::structure::bvh::build::build_sah_box_parts_parallel;
+use arrayvec::ArrayVec;
+
 use crate::structure::bvh::build::{TreeParts, build_sah_box_parts};
 use crate::structure::bvh::layout::BvhNode;
 use crate::structure::bvh::{Bvh, BvhOptions, SplitMethod};
@@ -199,6 +201,12 @@ impl<P: Primitive> Bvh4<P> {
         prims: &[P],
     ) -> Self {
         let (nodes, depth) = collapse(&parts.nodes);
+        // The parts index every primitive unless some were left out.
+        let left_out = if parts.leaf_ids.len() == prims.len() {
+            Vec::new()
+        } else {
+            left_out_of(prims)
+        };
         Self {
             nodes,
             leaf_prims: parts.leaf_prims,
@@ -206,7 +214,7 @@ impl<P: Primitive> Bvh4<P> {
             depth,
             input_len: prims.len(),
             build_sah_cost: None,
-            left_out: left_out_of(prims),
+            left_out,
         }
         .with_build_cost()
     }
@@ -278,20 +286,26 @@ pub(super) fn collapse<V: Vector>(binary: &[BvhNode<Aabb<V>>]) -> (Vec<Bvh4Node>
     };
     // A leaf root becomes a wide root with one leaf lane.
     let root_lanes = if root.is_leaf() {
-        vec![0]
+        Lanes::from_iter([0])
     } else {
         lanes_of(binary, 0)
     };
-    collapse_from(binary, root_lanes)
+    collapse_from(binary, root_lanes, binary.len())
 }
 
 /// The wide subtree whose root has the binary nodes `root_lanes` as lanes, in
-/// [`collapse`]'s order with the root at index 0, and its depth in wide levels.
+/// [`collapse`]'s order with the root at index 0, and its depth in wide levels. `size`
+/// bounds the binary nodes below `root_lanes`.
 pub(super) fn collapse_from<V: Vector>(
     binary: &[BvhNode<Aabb<V>>],
-    root_lanes: Vec<u32>,
+    root_lanes: Lanes,
+    size: usize,
 ) -> (Vec<Bvh4Node>, usize) {
-    let mut nodes = vec![Bvh4Node::EMPTY];
+    // Each wide node stands for at least one binary inner node, and fewer than half of a
+    // binary tree's nodes are inner: the vector never moves while it grows (pushed one by
+    // one, it was copied at every doubling), and what is left over is given back at the end.
+    let mut nodes = Vec::with_capacity(size / 2 + 1);
+    nodes.push(Bvh4Node::EMPTY);
     let mut waiting = vec![(0usize, 1usize, root_lanes)];
     let mut depth = 0;
     while let Some((index, level, lanes)) = waiting.pop() {
@@ -311,17 +325,22 @@ pub(super) fn collapse_from<V: Vector>(
         }
         nodes[index] = node;
     }
+    nodes.shrink_to_fit();
     (nodes, depth)
 }
+
+/// The binary nodes that make one wide node's lanes.
+pub(super) type Lanes = ArrayVec<u32, WIDTH>;
 
 /// The binary nodes that become the lanes of the wide node made for inner node `id`: its two
 /// children, then, while there are fewer than [`WIDTH`], the inner one with the largest
 /// surface area replaced by its two children (in place, so lanes keep the binary tree's
 /// left-to-right order).
-pub(super) fn lanes_of<V: Vector>(binary: &[BvhNode<Aabb<V>>], id: u32) -> Vec<u32> {
+pub(super) fn lanes_of<V: Vector>(binary: &[BvhNode<Aabb<V>>], id: u32) -> Lanes {
     let children = |id: u32| (id + 1, binary[id as usize].start);
     let (first, second) = children(id);
-    let mut lanes = vec![first, second];
+    let mut lanes = Lanes::new();
+    lanes.extend([first, second]);
     while lanes.len() < WIDTH {
         let widest = lanes
             .iter()
