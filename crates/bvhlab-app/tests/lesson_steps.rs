@@ -381,6 +381,43 @@ fn a_goal_shows_its_value_beside_what_its_target_stands_for() {
 }
 
 #[test]
+fn the_octree_is_called_so_in_3d_in_a_goal_and_an_address() {
+    // The 3D step of the quadtree lesson read "structure = quadtree" and showed "now
+    // quadtree" over the bunny's octree, which the structure panel calls an octree.
+    let lesson = lessons::find("quadtree").expect("the lesson");
+    let step = lesson
+        .steps
+        .iter()
+        .position(|s| s.goals.iter().any(|g| g.text == "structure = octree"))
+        .expect("a step whose goal names the octree");
+    let mut lab = Lab::default();
+    open(&mut lab, &lesson, step);
+    assert_eq!(lab.dimension(), Dimension::Three);
+    let goal = lesson.steps[step]
+        .goals
+        .iter()
+        .find(|g| g.text == "structure = octree")
+        .expect("the goal");
+    assert!(
+        goal.holds(&lab),
+        "the address's structure=octree is the octree"
+    );
+    assert_eq!(goal_text::now_text(goal, &lab), "now octree");
+    // In 2D the same structure is the quadtree, under either name.
+    open(&mut lab, &lesson, 0);
+    assert_eq!(lab.dimension(), Dimension::Two);
+    assert!(goal.holds(&lab));
+    assert_eq!(goal_text::now_text(goal, &lab), "now quadtree");
+    // A saved scene reads the other name too, and is written under the first.
+    let read: bvhlab_app::persist::StructureName =
+        serde_json::from_str("\"octree\"").expect("the name is read");
+    assert_eq!(
+        serde_json::to_string(&read).expect("written"),
+        "\"quadtree\""
+    );
+}
+
+#[test]
 fn every_2d_step_frames_its_ray_handles_and_point_with_the_scene() {
     // A ray that starts outside the scene and points away from it was framed out: with
     // Predict on at step 0 the student saw nothing of the query.

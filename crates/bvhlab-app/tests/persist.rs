@@ -517,7 +517,7 @@ const BROKEN: &[(&str, &str, &str)] = &[
     ("[1.0, 1.0]", "[1.0, null]", "invalid type"),
     ("[1.0, 1.0]", "[1.0]", "invalid length"),
     ("[1.0, 1.0]", "[1.0, 1.0, 1.0]", "not a bvh-lab scene"),
-    ("\"sphere-tree\"", "\"octree\"", "unknown variant"),
+    ("\"sphere-tree\"", "\"r-tree\"", "unknown variant"),
     ("\"polygon\"", "\"circle\"", "unknown variant"),
     ("\"nearest\"", "\"near_est\"", "unknown variant"),
     ("\"kd-tree\"", "\"nope\"", "unknown preset"),

@@ -6,6 +6,7 @@
 use bvhlab::FitKind;
 
 use crate::model::goal::{Comparison, Goal, Quantity, Target, Word};
+use crate::model::structures::StructureKind;
 use crate::persist::{SplitName, StructureName, TaskName, VariantName};
 
 /// The quantities a goal reads, with what each is (the lessons' README lists these).
@@ -264,7 +265,15 @@ pub fn now_text(goal: &Goal, lab: &crate::model::Lab) -> String {
     let Some(value) = goal.now(lab) else {
         return "unknown yet".to_owned();
     };
-    let now = value_text(value);
+    let now = match value {
+        // The 3D half names its quadtree as the lab does there.
+        Value::Word(Word::Structure(StructureKind::Quadtree))
+            if lab.dimension() == crate::model::Dimension::Three =>
+        {
+            StructureKind::Quadtree.label_in(3).to_owned()
+        }
+        _ => value_text(value),
+    };
     match (goal.target, value, goal.target_now(lab)) {
         (Target::Percent(_), Value::Number(n), _) => match goal.whole(lab) {
             Some(whole) if whole > 0.0 => {

@@ -23,12 +23,14 @@ use crate::pseudocode::{Task, Variant};
 
 use super::MAX_COORD;
 
-/// Declares `$name`, the stored names of `$target`'s variants, with `From` both ways.
+/// Declares `$name`, the stored names of `$target`'s variants, with `From` both ways. A
+/// variant may also be read under other names (`Variant = "name" | "other",`): it is always
+/// written under the first.
 macro_rules! stable_names {
     (
         $(#[$meta:meta])*
         $name:ident <=> $target:ident {
-            $($variant:ident = $text:literal,)+
+            $($variant:ident = $text:literal $(| $alias:literal)*,)+
         }
     ) => {
         $(#[$meta])*
@@ -39,7 +41,7 @@ macro_rules! stable_names {
                     "[`", stringify!($target), "::", stringify!($variant),
                     "`], stored as `\"", $text, "\"`."
                 )]
-                #[serde(rename = $text)]
+                #[serde(rename = $text $(, alias = $alias)*)]
                 $variant,
             )+
         }
@@ -51,7 +53,7 @@ macro_rules! stable_names {
             /// The variant stored as `text`, if any.
             pub fn from_name(text: &str) -> Option<Self> {
                 match text {
-                    $($text => Some(Self::$variant),)+
+                    $($text $(| $alias)* => Some(Self::$variant),)+
                     _ => None,
                 }
             }
@@ -84,7 +86,9 @@ stable_names! {
         ObbTree = "obb-tree",
         Grid = "grid",
         Bsp = "bsp",
-        Quadtree = "quadtree",
+        // In 3D the quadtree is an octree (the lab names it so there): a lesson's goal, an
+        // address or an embedding page may say either.
+        Quadtree = "quadtree" | "octree",
         KdTree = "kd-tree",
     }
 }

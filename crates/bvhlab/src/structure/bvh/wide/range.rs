@@ -77,7 +77,7 @@ impl<F: FnMut(usize)> Found for Each<F> {
 fn used_lanes(node: &Bvh4Node) -> LaneMasks {
     let mut used = 0;
     for lane in 0..WIDTH {
-        used |= u32::from(node.planes[0][0][lane] <= node.planes[1][0][lane]) << lane;
+        used |= u32::from(node.is_used(lane)) << lane;
     }
     LaneMasks {
         touch: used,
