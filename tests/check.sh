@@ -41,7 +41,7 @@ summary() {
 trap summary EXIT
 
 # The core's optional features, on in every build of the workspace below: the core is then
-# compiled once for the tests, the benchmarks, the lints and the docs, and the tests of saved
+# compiled once for the tests, once for the lints and the docs, and the tests of saved
 # trees (`serde`) and of batch queries and parallel builds (`parallel`) run with the rest. The
 # core without them is documented on its own and built for wasm32 (inside the web page).
 features=(--features bvhlab/serde,bvhlab/parallel)
@@ -67,11 +67,10 @@ background=$!
 step "format"
 cargo fmt --all -- --check
 
-step "tests (native): build the tests and the benchmarks, run the tests"
-# One build for the tests and the benchmarks (the benchmarks in the test profile, with the
-# tests' dependencies: the same code compiled and linked as by `cargo bench`, without a second,
-# optimised build of every dependency; run them with `cargo bench`, timings are not tests).
-cargo test --workspace "${features[@]}" --lib --bins --tests --benches --no-run
+step "tests (native): build and run the tests"
+# The benchmarks are not built here: the lints step type-checks every one of them (clippy's
+# --all-targets), and building and linking the eleven of them in the test profile cost a clean
+# run about half a minute for no test. Run them with `cargo bench`; timings are not tests.
 # The 3D renderer and heat-map tests render on the GPU (Mesa lavapipe on CI): here they must
 # find an adapter, not skip.
 BVHLAB_REQUIRE_GPU=1 cargo test --workspace "${features[@]}" --lib --bins --tests
@@ -83,10 +82,10 @@ step "fuzzing (libFuzzer on stable Rust: mesh files, scene files, share links, s
 bash tests/fuzz.sh check
 
 step "lints (native, then the core and the lab for wasm32)"
-cargo clippy --workspace --all-targets "${features[@]}" -- -D warnings
-# The comparison's Embree peer (the bench crate's `embree` feature). Linting does not link, so
+# With the comparison's Embree peer (the bench crate's `embree` feature), in the same pass (a
+# second pass for it alone took half a minute on a clean machine). Linting does not link, so
 # this needs no libembree3; running it does (crates/bvhlab-bench/compare.sh installs it).
-cargo clippy -p bvhlab-bench --all-targets --features embree -- -D warnings
+cargo clippy --workspace --all-targets --features bvhlab/serde,bvhlab/parallel,bvhlab-bench/embree -- -D warnings
 cargo clippy -p bvhlab -p bvhlab-meshio -p bvhlab-app --target wasm32-unknown-unknown -- -D warnings
 # The lab's model alone (what fuzz/ builds): no egui may creep into it.
 cargo clippy -p bvhlab-app --no-default-features -- -D warnings
@@ -117,7 +116,9 @@ CARGO_PROFILE_RELEASE_STRIP=symbols cargo build -p bvhlab --release --target was
 step "browser end-to-end (headless Chromium, WebGPU and WebGL2)"
 # Installs what it lacks itself (Chromium as root, npm packages), serves dist/ and drives the
 # page; screenshots in target/e2e/.
-bash tests/e2e/run.sh
+# The page built in the step before is the one to test: run.sh need not build it again (a
+# build with nothing to compile still takes about 25 s: wasm-bindgen and the one-file page).
+BVHLAB_E2E_PAGE_BUILT=1 bash tests/e2e/run.sh
 
 end_step
 printf '\n==> all checks passed\n'

@@ -2,7 +2,7 @@
 # bvh-lab's browser end-to-end test, from scratch on a fresh machine: installs what it needs
 # (Node.js and Debian's Chromium with software Vulkan/GL when missing and we are root, then the
 # pinned playwright-core, pngjs, axe-core and scorm-again with npm ci; zip and unzip), builds
-# the page (web/build.sh), serves it on a free local port (web/server.mjs), runs the tests of
+# the page (web/build.sh, unless tests/check.sh has just built it), serves it on a free local port (web/server.mjs), runs the tests of
 # tests/e2e/ against it (lab, view3d, embed, lesson, teacher, hosting, a11y; then scorm, which packages
 # the lab and serves the packages itself), and stops the server.
 # The exit code is the test's. Screenshots and the server's log go to target/e2e/.
@@ -35,7 +35,12 @@ fi
 
 (cd tests/e2e && npm ci --no-audit --no-fund --loglevel=error)
 
-bash web/build.sh
+# tests/check.sh has just built the page and says so; run alone, this builds it.
+if [ "${BVHLAB_E2E_PAGE_BUILT:-}" = 1 ] && [ -f dist/index.html ] && [ -f dist/bvh-lab-offline.html ]; then
+  echo "tests/e2e/run.sh: testing the page tests/check.sh built (dist/)"
+else
+  bash web/build.sh
+fi
 
 mkdir -p target/e2e
 log=target/e2e/server.log
