@@ -24,8 +24,27 @@
 //! 4, 8 or 16 triangles, a third of the wide nodes): 0.98-1.16x against this walk on its
 //! own tree, for about 37 more bytes per triangle; testing a node's leaf lanes where it is
 //! met (as `nearest.rs` does), or the whole triangle test inlined into the walk: no change.
-//! Their code is on the branches `helper-walk-octant-experiment` and
+//! Their code was on the branches `helper-walk-octant-experiment` and
 //! `helper-walk-blocks-experiment` (not merged).
+//!
+//! Tried and not kept yet, because it needs a tree of its own (issue 33, one binary timing
+//! four layouts alternately three times, medians): the same blocks written with glam's
+//! four-lane operations (the corners of four triangles in structure of arrays, 144 bytes;
+//! moved and sheared as the scalar test does, with separate multiplies and subtractions so
+//! that every lane is rounded alike; the edge values in `f32`, whose nonzero, non-NaN signs are
+//! the exact ones, so a lane with two opposite signs is a miss the `f64` test would also find;
+//! the lanes left are tested by the scalar test on a triangle read back from the block, not
+//! from the leaf order's copy) over the binned SAH that costs a leaf `ceil(n / 4)` with
+//! leaves of up to 16 triangles (blocks 95% full, a third of the wide nodes). Against this
+//! walk on its own tree: 1.06x and 1.20x on primary rays (bunny, dragon), 1.16x and 1.49x on
+//! shadow rays, 1.01x and 1.14x on diffuse rays, 1.12x and 1.39x on random rays, with the
+//! same answers bit for bit on all 307,210 rays; leaves of up to 8: 1.01-1.32x. The same
+//! tree tested one triangle at a time was 0.69-0.83x (random rays 1.04-1.07x), and blocks
+//! over this walk's own tree (1.8 triangles a leaf) 0.74-1.08x: the gain needs both. A
+//! plainly written loop over the lanes (which the compiler left half scalar) was 0.89-1.14x
+//! of the scalar test on the same tree.
+//! Still to do for it: the blocks in place of the leaf order's triangles (the other queries
+//! reading them too), their upkeep through refit, insert and remove, and the saved layout.
 //!
 //! [`NodeVolume::ray_entry`]: crate::structure::bvh::NodeVolume::ray_entry
 
