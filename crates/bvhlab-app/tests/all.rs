@@ -13,6 +13,7 @@ mod embed;
 mod export;
 mod first_hour_words;
 mod heatmap;
+mod keys2d;
 mod layout;
 mod lesson_layout;
 mod lesson_steps;

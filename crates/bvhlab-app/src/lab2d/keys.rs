@@ -83,38 +83,20 @@ pub(super) fn handle_keys(
     if ctx.text_edit_focused() || ctx.memory(|m| m.focused().is_some_and(|f| f != canvas)) {
         return;
     }
-    let lab = cx.lab.two();
-    let (cycle, arrows, fine) = ui.input(|i| {
+    let (cycles, arrows, fine) = ui.input(|i| {
         // Every press counts: a slow frame (software rendering) may get several.
         let arrow = |key, v: Vec2| v * i.num_presses(key) as f32;
         let arrows = arrow(egui::Key::ArrowLeft, Vec2::NEG_X)
             + arrow(egui::Key::ArrowRight, Vec2::X)
             + arrow(egui::Key::ArrowUp, Vec2::Y)
             + arrow(egui::Key::ArrowDown, Vec2::NEG_Y);
-        (i.key_pressed(egui::Key::R), arrows, i.modifiers.shift)
+        (i.num_presses(egui::Key::R), arrows, i.modifiers.shift)
     });
-    if cycle {
-        let start = picked.map_or(KeyHandle::RayStart, KeyHandle::next);
-        let found = [start, start.next(), start.next().next()]
-            .into_iter()
-            .find(|h| h.at(lab).is_some());
-        *picked = Some(found.unwrap_or_else(|| {
-            // Nothing to move yet: a ray across the middle of the view, left to right.
-            let middle = screen.to_world(screen.rect.center());
-            let half_width = screen.world_length(screen.rect.width() / 4.0);
-            cx.act(Action2d::SetRay(Some(RayHandles {
-                origin: middle - Vec2::new(half_width, 0.0),
-                target: middle,
-            })));
-            KeyHandle::RayStart
-        }));
-        if let Some(h) = *picked {
-            cx.act(Action::SetMessage(Some(format!(
-                "The arrow keys move {} (Shift: finer); R picks the next handle.",
-                h.name()
-            ))));
-        }
+    // Every press picks once, as for the arrows: two presses in one slow frame go two handles on.
+    for _ in 0..cycles {
+        pick_next(cx, screen, picked);
     }
+    let lab = cx.lab.two();
     let Some(handle) = *picked else {
         return;
     };
@@ -135,6 +117,30 @@ pub(super) fn handle_keys(
         _ => return,
     };
     cx.act(action);
+}
+
+/// R: the arrows' next handle that is there (ray start, ray target, query point), said in
+/// the status line; with nothing to move yet, a ray across the middle of the view.
+fn pick_next(cx: &mut Cx<'_>, screen: &Screen, picked: &mut Option<KeyHandle>) {
+    let start = picked.map_or(KeyHandle::RayStart, KeyHandle::next);
+    let lab = cx.lab.two();
+    let found = [start, start.next(), start.next().next()]
+        .into_iter()
+        .find(|h| h.at(lab).is_some());
+    let handle = found.unwrap_or_else(|| {
+        let middle = screen.to_world(screen.rect.center());
+        let half_width = screen.world_length(screen.rect.width() / 4.0);
+        cx.act(Action2d::SetRay(Some(RayHandles {
+            origin: middle - Vec2::new(half_width, 0.0),
+            target: middle,
+        })));
+        KeyHandle::RayStart
+    });
+    *picked = Some(handle);
+    cx.act(Action::SetMessage(Some(format!(
+        "The arrow keys move {} (Shift: finer); R picks the next handle.",
+        handle.name()
+    ))));
 }
 
 /// Frames the handle the arrow keys move, so that a keyboard user sees which it is.
