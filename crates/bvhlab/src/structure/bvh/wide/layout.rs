@@ -17,12 +17,12 @@
 //!
 //! [`volume`]: crate::structure::bvh::volume
 
+use arrayvec::ArrayVec;
+
 #[cfg(feature = "parallel")]
 use super::collapse_parallel::collapse_parallel;
 #[cfg(feature = "parallel")]
 use crate::structure::bvh::build::build_sah_box_parts_parallel;
-use arrayvec::ArrayVec;
-
 use crate::structure::bvh::build::{TreeParts, build_sah_box_parts};
 use crate::structure::bvh::layout::BvhNode;
 use crate::structure::bvh::{Bvh, BvhOptions, SplitMethod};
@@ -302,8 +302,10 @@ pub(super) fn collapse_from<V: Vector>(
     size: usize,
 ) -> (Vec<Bvh4Node>, usize) {
     // Each wide node stands for at least one binary inner node, and fewer than half of a
-    // binary tree's nodes are inner: the vector never moves while it grows (pushed one by
-    // one, it was copied at every doubling), and what is left over is given back at the end.
+    // binary tree's nodes are inner: the vector does not move while it grows (pushed one by
+    // one, it was copied at every doubling; a piece of the parallel collapse, whose size is
+    // a bound give or take a few nodes, may still grow once), and what is left over is given
+    // back at the end.
     let mut nodes = Vec::with_capacity(size / 2 + 1);
     nodes.push(Bvh4Node::EMPTY);
     let mut waiting = vec![(0usize, 1usize, root_lanes)];
