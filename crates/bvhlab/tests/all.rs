@@ -11,6 +11,7 @@ mod overlap_common;
 
 mod batch_queries;
 mod bsp;
+mod bvh4_blocks;
 mod bvh4_queries;
 mod bvh4_range_whole_nodes;
 mod bvh4_updates;

@@ -127,8 +127,9 @@ where
     assert_eq!(format!("{sliced:?}"), format!("{whole:?}"), "{context}");
 }
 
-/// Every option the builder branches on: each method, leaves of 1 and 4, no depth limit and
-/// a depth limit of 2, 2 and 12 bins, both sphere fits.
+/// Every option the builder branches on: each method, leaves of 1, 4 and 16, no depth limit
+/// and a depth limit of 2, 2 and 12 bins, both sphere fits, leaves costed one by one and by
+/// blocks of four.
 fn option_grid() -> Vec<BvhOptions> {
     let mut grid = Vec::new();
     for method in [
@@ -136,11 +137,12 @@ fn option_grid() -> Vec<BvhOptions> {
         SplitMethod::ObjectMedian,
         SplitMethod::BinnedSah,
     ] {
-        for (leaf_size, max_depth, bins, sphere_fit) in [
-            (1, 64, 12, SphereFit::Ritter),
-            (4, 64, 2, SphereFit::Ritter),
-            (4, 2, 12, SphereFit::Ritter),
-            (4, 64, 12, SphereFit::Welzl),
+        for (leaf_size, max_depth, bins, sphere_fit, leaf_block) in [
+            (1, 64, 12, SphereFit::Ritter, 1),
+            (4, 64, 2, SphereFit::Ritter, 1),
+            (4, 2, 12, SphereFit::Ritter, 1),
+            (4, 64, 12, SphereFit::Welzl, 1),
+            (16, 64, 16, SphereFit::Ritter, 4),
         ] {
             grid.push(BvhOptions {
                 method,
@@ -148,6 +150,7 @@ fn option_grid() -> Vec<BvhOptions> {
                 max_depth,
                 bins,
                 sphere_fit,
+                leaf_block,
             });
         }
     }
@@ -320,18 +323,22 @@ fn options() -> impl Strategy<Value = BvhOptions> {
         1usize..10,
         2usize..20,
         prop::bool::ANY,
+        1usize..5,
     )
-        .prop_map(|(method, leaf_size, max_depth, bins, welzl)| BvhOptions {
-            method,
-            leaf_size,
-            max_depth,
-            bins,
-            sphere_fit: if welzl {
-                SphereFit::Welzl
-            } else {
-                SphereFit::Ritter
+        .prop_map(
+            |(method, leaf_size, max_depth, bins, welzl, leaf_block)| BvhOptions {
+                method,
+                leaf_size,
+                max_depth,
+                bins,
+                leaf_block,
+                sphere_fit: if welzl {
+                    SphereFit::Welzl
+                } else {
+                    SphereFit::Ritter
+                },
             },
-        })
+        )
 }
 
 fn check_all_volumes<P: Primitive>(prims: &[P], options: &BvhOptions, budget: usize) {

@@ -59,6 +59,14 @@ fn option_sets() -> Vec<BvhOptions> {
             ..default
         });
     }
+    let blocks = BvhOptions::for_triangle_blocks();
+    sets.extend([
+        blocks,
+        BvhOptions {
+            leaf_block: 2,
+            ..blocks
+        },
+    ]);
     sets
 }
 
@@ -156,8 +164,10 @@ fn a_wide_tree_built_directly_is_the_collapsed_binary_tree() {
             let collapsed = Bvh4::from_bvh(&AabbTree::build_with(tris, options));
             assert!(direct == collapsed, "{name}, {options:?}");
         }
+        // Over triangles `build` costs leaves by blocks of four.
+        let options = BvhOptions::for_triangle_blocks();
         assert!(
-            Bvh4::build(tris) == Bvh4::from_bvh(&AabbTree::build(tris)),
+            Bvh4::build(tris) == Bvh4::from_bvh(&AabbTree::build_with(tris, &options)),
             "{name}"
         );
     }

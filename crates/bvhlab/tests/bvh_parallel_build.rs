@@ -100,6 +100,7 @@ fn option_sets() -> Vec<BvhOptions> {
             max_depth: 3,
             ..default
         },
+        BvhOptions::for_triangle_blocks(),
     ]
 }
 

@@ -48,6 +48,21 @@ pub(crate) struct RayShear {
 }
 
 impl RayShear {
+    /// The axes that become x, y and z, and the shears of x and y: what a test of several
+    /// triangles at once needs to move their corners exactly as [`apply`](Self::apply)
+    /// does (the wide tree's four-triangle blocks).
+    #[inline]
+    pub(crate) fn axes_and_shear(&self) -> ([usize; 3], [f32; 2]) {
+        (
+            [
+                usize::from(self.kx),
+                usize::from(self.ky),
+                usize::from(self.kz),
+            ],
+            [self.sx, self.sy],
+        )
+    }
+
     /// A point relative to the ray's origin, in the ray's frame: permuted and sheared so
     /// that the ray runs along +z. A function, not a closure: WebAssembly builds left the
     /// closure out of line, a call per corner.

@@ -63,7 +63,11 @@ use header::{Header, checksum};
 ///
 /// Version 3 (issue 33): a [`Bvh4`](crate::Bvh4) keeps the primitives it leaves out, so that
 /// its `remove` gives them back.
-pub const FORMAT_VERSION: u32 = 3;
+///
+/// Version 4 (issue 33): a [`Bvh4`](crate::Bvh4) over triangles holds its leaves' triangles
+/// in blocks of four (with padding ids), and every build's options say how many primitives a
+/// leaf tests at once (`BvhOptions::leaf_block`).
+pub const FORMAT_VERSION: u32 = 4;
 
 /// The structure as bytes: the header, then the payload.
 ///

@@ -193,7 +193,7 @@ where
     let mut nodes = Vec::with_capacity(n.saturating_mul(2).min(1 << 24));
     if n > 0 {
         let boxes = Boxes::of(&items);
-        let mut binner = Binner::new(options.bin_count());
+        let mut binner = Binner::new(options);
         build_nodes(&mut items, boxes, 0, &mut binner, options, &mut nodes);
     }
     nodes.shrink_to_fit();
@@ -260,7 +260,8 @@ fn make_node<B: NodeVolume>(
     let items = &mut items[job.start..job.end];
     let cheapest = binner.cheapest::<B::Point>(&job.boxes.bounds, &job.boxes.centroids, items);
     let small = n <= options.leaf_limit();
-    let Some((split, left, right)) = split_node::<B::Point>(items, &job.boxes, cheapest, small)
+    let leaf_cost = small.then(|| options.leaf_cost(n));
+    let Some((split, left, right)) = split_node::<B::Point>(items, &job.boxes, cheapest, leaf_cost)
     else {
         return;
     };
@@ -289,25 +290,25 @@ pub(super) fn is_forced_leaf(n: usize, depth: usize, options: &BvhOptions) -> bo
 
 /// How a node over `items` (with `boxes`) splits, given its cheapest binned plane: the size
 /// of its first child and both children's boxes, after moving the first child's primitives
-/// to the front; or `None` for a leaf (`small`: it has at most `leaf_size` primitives).
+/// to the front; or `None` for a leaf. `leaf_cost` is the SAH's cost of a leaf of them when
+/// they are few enough for one (at most `leaf_size`).
 #[inline]
 pub(super) fn split_node<V: Vector>(
     items: &mut [Item],
     boxes: &Boxes,
     cheapest: Option<Cheapest>,
-    small: bool,
+    leaf_cost: Option<f32>,
 ) -> Option<(usize, Boxes, Boxes)> {
-    let n = items.len();
-    match cheapest {
+    match (cheapest, leaf_cost) {
         // Splitting does not pay, or cannot be costed: a leaf, if it is small enough.
-        Some(cheapest) if small && cheapest.cost >= n as f32 => None,
-        None if small => None,
-        Some(cheapest) => {
+        (Some(cheapest), Some(leaf_cost)) if cheapest.cost >= leaf_cost => None,
+        (None, Some(_)) => None,
+        (Some(cheapest), _) => {
             let (count, left, right) = partition(items, &cheapest);
             debug_assert_eq!(count, cheapest.left, "binning and partition disagree");
             Some((count, left, right))
         }
-        None => {
+        (None, None) => {
             let left = median::<V>(items, &boxes.centroids);
             Some((left, Boxes::of(&items[..left]), Boxes::of(&items[left..])))
         }

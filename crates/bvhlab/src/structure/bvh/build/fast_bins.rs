@@ -10,6 +10,7 @@
 
 use glam::Vec4;
 
+use super::BvhOptions;
 use super::sah::MAX_BINS;
 use crate::Vector;
 use crate::volume::Aabb;
@@ -139,6 +140,9 @@ impl Plan {
 #[derive(Clone, Debug)]
 pub(super) struct Binner {
     bins: usize,
+    /// The SAH counts a side's primitives in groups of this many
+    /// ([`BvhOptions::leaf_block`]).
+    leaf_block: usize,
     boxes: [[LaneBox; MAX_BINS]; 3],
     counts: [[u32; MAX_BINS]; 3],
     occupied: [u64; 3],
@@ -147,9 +151,14 @@ pub(super) struct Binner {
 }
 
 impl Binner {
-    pub fn new(bins: usize) -> Box<Self> {
+    pub fn new(options: &BvhOptions) -> Box<Self> {
+        Self::with_sizes(options.bin_count(), options.leaf_block)
+    }
+
+    fn with_sizes(bins: usize, leaf_block: usize) -> Box<Self> {
         Box::new(Self {
             bins: bins.clamp(2, MAX_BINS),
+            leaf_block: leaf_block.max(1),
             boxes: [[LaneBox::EMPTY; MAX_BINS]; 3],
             counts: [[0; MAX_BINS]; 3],
             occupied: [0; 3],
@@ -168,7 +177,7 @@ impl Binner {
     ) -> Option<Cheapest> {
         let plan = self.plan::<V>(bounds, centroids)?;
         if let [a, b] = items {
-            return Self::cheapest_of_two::<V>(plan.axes(), [a, b], plan.node_area);
+            return self.cheapest_of_two::<V>(plan.axes(), [a, b], plan.node_area);
         }
         self.fill_planned(&plan, items);
         self.finish::<V>(&plan)
@@ -251,11 +260,10 @@ impl Binner {
         if plan.k == 0 || items.len() <= 2 {
             return self.cheapest::<V>(bounds, centroids, items);
         }
-        let bins = self.bins;
         let filled = items
             .par_chunks(chunk.max(1))
             .map(|part| {
-                let mut binner = Self::new(bins);
+                let mut binner = Self::with_sizes(self.bins, self.leaf_block);
                 binner.fill_planned(&plan, part);
                 binner
             })
@@ -289,6 +297,7 @@ impl Binner {
     /// plane after the lower bin has that item's box below it and the other's above, and
     /// the sweeps' merges with the empty box give each box itself.
     fn cheapest_of_two<V: Vector>(
+        &self,
         axes: &[AxisBins],
         items: [&super::fast::Item; 2],
         node_area: f64,
@@ -307,7 +316,8 @@ impl Binner {
                 let (low, high) = if i < j { (0, 1) } else { (1, 0) };
                 let area_low = items[low].bounds.half_area::<V>();
                 let area_high = items[high].bounds.half_area::<V>();
-                curve.cost = (1.0 + (area_low * 1.0 + area_high * 1.0) / node_area) as f32;
+                let one = self.units(1);
+                curve.cost = (1.0 + (area_low * one + area_high * one) / node_area) as f32;
                 curve.best = i.min(j);
                 curve.left = 1;
             }
@@ -354,6 +364,8 @@ impl Binner {
         }
         let occupied = &occupied[..m];
         let (boxes, counts) = (&self.boxes[axis], &self.counts[axis]);
+        let block = self.leaf_block;
+        let units = |n: usize| n.div_ceil(block) as f64;
         // Sweep from the right: `above[j]` is everything after occupied bin `j`.
         let above = &mut self.above;
         let (mut acc, mut n) = (LaneBox::EMPTY, 0usize);
@@ -376,7 +388,7 @@ impl Binner {
             n += counts[i] as usize;
             let (area_above, n_above) = above[j];
             let cost = (1.0
-                + (acc.half_area::<V>() * n as f64 + area_above * n_above as f64) / node_area)
+                + (acc.half_area::<V>() * units(n) + area_above * units(n_above)) / node_area)
                 as f32;
             if cost < best.cost {
                 best.best = i;
@@ -385,6 +397,13 @@ impl Binner {
             }
         }
         best
+    }
+
+    /// What the SAH counts for a side of `n` primitives: `n` tests in groups of
+    /// `leaf_block` (exact in `f64`).
+    #[inline]
+    fn units(&self, n: usize) -> f64 {
+        n.div_ceil(self.leaf_block) as f64
     }
 
     /// Empties the bins the node used.

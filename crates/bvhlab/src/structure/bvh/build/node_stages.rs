@@ -156,7 +156,7 @@ where
             planes: Vec::new(),
             bin_costs: Vec::new(),
             chosen_bin: None,
-            leaf_cost: n as f32,
+            leaf_cost: self.options.leaf_cost(n),
             left: 0,
             right: 0,
             made_leaf: false,
@@ -179,8 +179,8 @@ where
             }
             SplitMethod::ObjectMedian => Stage::Median { node, record },
             SplitMethod::BinnedSah => {
-                let bins = self.options.bin_count();
-                match SahBinning::start(&node.bounds, &node.centroids, bins, &mut self.sah) {
+                let (bins, block) = (self.options.bin_count(), self.options.leaf_block);
+                match SahBinning::start(&node.bounds, &node.centroids, bins, block, &mut self.sah) {
                     Some(binning) => Stage::Bin {
                         node,
                         record,
@@ -231,7 +231,7 @@ where
         record.chosen_bin = Some(curve.best);
         let n = node.len();
         // Splitting does not pay: a leaf, if it is small enough.
-        if n <= self.options.leaf_limit() && curve.best_cost >= n as f32 {
+        if n <= self.options.leaf_limit() && curve.best_cost >= self.options.leaf_cost(n) {
             record.made_leaf = true;
             self.log_decision(record, &sah_split(&curve), n);
             return self.leaf(&node, observer);

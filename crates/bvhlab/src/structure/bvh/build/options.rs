@@ -62,6 +62,13 @@ pub struct BvhOptions {
     pub bins: usize,
     /// How sphere-tree nodes are fitted (ignored by the other node volumes).
     pub sphere_fit: SphereFit,
+    /// How many primitives a leaf tests at once, for the SAH's cost of a leaf:
+    /// `ceil(n / leaf_block)` instead of `n`. 1 (the default) is the lecture's cost, one test
+    /// per primitive; 4 is what a [`Bvh4`](crate::structure::bvh::Bvh4) over triangles tests
+    /// at once (its leaves hold them in blocks of four), so its build makes leaves whose
+    /// blocks come out full ([`BvhOptions::for_triangle_blocks`]). The binned-SAH builds
+    /// read it; the stepped build the lab watches costs one per primitive. At least 1.
+    pub leaf_block: usize,
 }
 
 impl Default for BvhOptions {
@@ -72,6 +79,7 @@ impl Default for BvhOptions {
             max_depth: MAX_DEPTH,
             bins: 16,
             sphere_fit: SphereFit::Ritter,
+            leaf_block: 1,
         }
     }
 }
@@ -84,6 +92,26 @@ impl BvhOptions {
             method,
             ..Self::default()
         }
+    }
+
+    /// The options [`Bvh4::build`](crate::structure::bvh::Bvh4::build) uses over triangles:
+    /// the binned SAH costing leaves by blocks of four triangles, with leaves of up to 16.
+    ///
+    /// Measured on the bunny and the dragon (issue 33), against the default options'
+    /// tree with the same four-triangle test: first hits 1.01-1.49x as fast by ray kind, and
+    /// a third as many wide nodes; the blocks came out 95-96% full.
+    #[must_use]
+    pub fn for_triangle_blocks() -> Self {
+        Self {
+            leaf_size: 16,
+            leaf_block: 4,
+            ..Self::default()
+        }
+    }
+
+    /// The SAH's cost of testing a leaf of `n` primitives: `n` in groups of `leaf_block`.
+    pub(in crate::structure::bvh) fn leaf_cost(&self, n: usize) -> f32 {
+        n.div_ceil(self.leaf_block.max(1)) as f32
     }
 
     /// `leaf_size`, at least 1.

@@ -164,7 +164,7 @@ fn build_piece<B: NodeVolume>(
     let n = items.len();
     if n < SUBTREE {
         let mut nodes = Vec::with_capacity(2 * n);
-        let mut binner = Binner::new(options.bin_count());
+        let mut binner = Binner::new(options);
         build_nodes(items, boxes, depth, &mut binner, options, &mut nodes);
         return Piece::Serial(nodes);
     }
@@ -178,7 +178,7 @@ fn build_piece<B: NodeVolume>(
     if is_forced_leaf(n, depth, options) {
         return leaf();
     }
-    let mut binner = Binner::new(options.bin_count());
+    let mut binner = Binner::new(options);
     let cheapest = if n >= BINS_PARALLEL {
         let chunk = (n / (2 * rayon::current_num_threads())).max(CHUNK);
         binner.cheapest_parallel::<B::Point>(&boxes.bounds, &boxes.centroids, items, chunk)
@@ -186,8 +186,9 @@ fn build_piece<B: NodeVolume>(
         binner.cheapest::<B::Point>(&boxes.bounds, &boxes.centroids, items)
     };
     drop(binner);
-    let small = n <= options.leaf_limit();
-    let Some((split, left, right)) = split_node::<B::Point>(items, &boxes, cheapest, small) else {
+    let leaf_cost = (n <= options.leaf_limit()).then(|| options.leaf_cost(n));
+    let Some((split, left, right)) = split_node::<B::Point>(items, &boxes, cheapest, leaf_cost)
+    else {
         return leaf();
     };
     let (first_items, second_items) = items.split_at_mut(split);

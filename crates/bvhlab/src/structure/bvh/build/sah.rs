@@ -97,6 +97,9 @@ pub(super) struct SahBinning {
     curves: [Option<SahCurve>; 3],
     /// Half the node's surface area (perimeter in 2D).
     node_area: f64,
+    /// A side's primitives are counted in groups of this many
+    /// ([`BvhOptions::leaf_block`](super::BvhOptions::leaf_block)).
+    leaf_block: usize,
 }
 
 impl SahBinning {
@@ -106,6 +109,7 @@ impl SahBinning {
         bounds: &Aabb<V>,
         centroids: &Aabb<V>,
         bins: usize,
+        leaf_block: usize,
         scratch: &mut SahScratch<V>,
     ) -> Option<Self> {
         let node_area = half_area(bounds);
@@ -133,7 +137,18 @@ impl SahBinning {
             scratch.bins.resize(V::DIM * bins, (Aabb::EMPTY, 0));
             scratch.occupied = [0; 3];
         }
-        Some(Self { curves, node_area })
+        Some(Self {
+            curves,
+            node_area,
+            leaf_block: leaf_block.max(1),
+        })
+    }
+
+    /// What the SAH counts for a side of `n` primitives: `n` tests in groups of
+    /// `leaf_block` (exact in `f64`).
+    #[inline]
+    fn units(&self, n: usize) -> f64 {
+        n.div_ceil(self.leaf_block) as f64
     }
 
     /// Puts each primitive into its bin on every binned axis.
@@ -196,8 +211,8 @@ impl SahBinning {
                 n += bin.1;
                 let (area_above, n_above) = above[j];
                 let cost = (1.0
-                    + (half_area(&acc) * n as f64 + area_above * n_above as f64) / self.node_area)
-                    as f32;
+                    + (half_area(&acc) * self.units(n) + area_above * self.units(n_above))
+                        / self.node_area) as f32;
                 if cost < curve.best_cost {
                     curve.best = usize::from(index);
                     curve.best_cost = cost;
@@ -254,7 +269,8 @@ impl SahBinning {
                     continue;
                 }
                 let cost = 1.0
-                    + (half_area(&acc) * n as f64 + area_above * n_above as f64) / self.node_area;
+                    + (half_area(&acc) * self.units(n) + area_above * self.units(n_above))
+                        / self.node_area;
                 costs[i] = cost as f32;
                 if costs[i] < curve.best_cost {
                     curve.best = i;

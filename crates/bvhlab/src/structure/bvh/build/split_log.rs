@@ -10,7 +10,8 @@ use crate::structure::bvh::SplitMethod;
 /// and `bin_costs[i]` the estimated cost of splitting there: `1 + (A(left) N(left) +
 /// A(right) N(right)) / A(node)`, in units of one primitive test, with `A` the surface area
 /// (perimeter in 2D) of each side's box and `N` its primitive count; an empty side costs
-/// `+inf`. Not splitting costs `leaf_cost = N(node)`. Median splits have no curve.
+/// `+inf`. Not splitting costs `leaf_cost = N(node)` (counted in groups of `leaf_block`, 1 by
+/// default). Median splits have no curve.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SplitRecord {
     /// The node.

@@ -62,11 +62,8 @@ where
             let node = &self.nodes[current as usize];
             if node.is_leaf() {
                 let range = node.leaf_range();
-                if best.test_leaf(
-                    &self.leaf_prims[range.clone()],
-                    &self.leaf_ids[range],
-                    point,
-                ) {
+                let leaf = self.leaf_prims[range.clone()].iter().copied();
+                if best.test_leaf(leaf.zip(self.leaf_ids[range].iter().copied()), point) {
                     reach_sq = reach_squared(best.distance * GROW + slack);
                 }
             } else {
@@ -144,30 +141,42 @@ impl<V: Vector> Best<V> {
         distance: f32::INFINITY,
     };
 
-    /// Tests the primitives of one leaf (`ids` are their input indices) with the observed
+    /// Tests the primitives of one leaf (each with its input index) with the observed
     /// walk's rule, the least `(distance, index)` wins; whether the best changed.
     #[inline]
     pub(in crate::structure::bvh) fn test_leaf<P: Primitive<Point = V>>(
         &mut self,
-        prims: &[P],
-        ids: &[u32],
+        leaf: impl Iterator<Item = (P, u32)>,
         point: V,
     ) -> bool {
         let mut changed = false;
-        for (prim, &id) in prims.iter().zip(ids) {
-            let q = contract::project_point(prim, point);
-            let distance = (q - point).length();
-            let id = id as usize;
-            if distance < self.distance || (distance == self.distance && id < self.prim) {
-                *self = Self {
-                    prim: id,
-                    point: q,
-                    distance,
-                };
-                changed = true;
-            }
+        for (prim, id) in leaf {
+            changed |= self.test(&prim, id, point);
         }
         changed
+    }
+
+    /// Tests one primitive (`id` its input index) by the same rule; whether it became the
+    /// best.
+    #[inline]
+    pub(in crate::structure::bvh) fn test<P: Primitive<Point = V>>(
+        &mut self,
+        prim: &P,
+        id: u32,
+        point: V,
+    ) -> bool {
+        let q = contract::project_point(prim, point);
+        let distance = (q - point).length();
+        let id = id as usize;
+        let better = distance < self.distance || (distance == self.distance && id < self.prim);
+        if better {
+            *self = Self {
+                prim: id,
+                point: q,
+                distance,
+            };
+        }
+        better
     }
 
     /// The answer: none when no primitive had a distance that is not NaN.

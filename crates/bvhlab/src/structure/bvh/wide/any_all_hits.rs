@@ -25,7 +25,6 @@ use super::layout::{Bvh4, Bvh4Node, WIDTH};
 use super::nearest::leaf_lanes;
 use super::ray::{LaneRay, enter_lanes};
 use super::stack::{MIDDLE_DEPTH, SHALLOW_DEPTH, capacity};
-use crate::primitive::contract;
 use crate::structure::Hit;
 use crate::structure::bvh::MAX_DEPTH;
 use crate::structure::bvh::volume::{GROW, PreparedRay};
@@ -98,15 +97,23 @@ impl<P: Primitive> Bvh4<P> {
                 let lane = bits.trailing_zeros() as usize;
                 bits &= bits - 1;
                 let start = node.child[lane] as usize;
-                for slot in start..start + node.count[lane] as usize {
-                    let prim = &self.leaf_prims[slot];
-                    if let Some(t) = contract::ray_hit(prim, ray).filter(|&t| t <= t_max) {
-                        let hit = Hit::on(self.leaf_ids[slot] as usize, t, prim, ray);
-                        if ANY {
-                            return Some(hit);
-                        }
-                        hits.push(hit);
+                let slots = start..start + node.count[lane] as usize;
+                let mut found = None;
+                self.leaf_prims.each_hit(slots, ray, |slot, t| {
+                    if t > t_max {
+                        return false;
                     }
+                    let prim = self.leaf_prims.get(slot);
+                    let hit = Hit::on(self.leaf_ids[slot] as usize, t, &prim, ray);
+                    if ANY {
+                        found = Some(hit);
+                        return true;
+                    }
+                    hits.push(hit);
+                    false
+                });
+                if found.is_some() {
+                    return found;
                 }
             }
             push_lanes(node, mask & !leaves, &mut stack, &mut len);

@@ -60,13 +60,15 @@ impl<P: Primitive> Bvh4<P> {
                 let lane = bits.trailing_zeros() as usize;
                 bits &= bits - 1;
                 let start = node.child[lane] as usize;
-                for slot in start..start + node.count[lane] as usize {
-                    let q = contract::project_point(&self.leaf_prims[slot], point);
-                    let distance = (q - point).length();
-                    if best.offer(self.leaf_ids[slot] as usize, q, distance) {
-                        reach_sq = reach_squared(best.bound() * GROW + slack);
-                    }
-                }
+                let slots = start..start + node.count[lane] as usize;
+                let ids = &self.leaf_ids;
+                self.leaf_prims
+                    .each_near(slots, &coords, &mut reach_sq, |slot, prim| {
+                        let q = contract::project_point(prim, point);
+                        let distance = (q - point).length();
+                        best.offer(ids[slot] as usize, q, distance)
+                            .then(|| reach_squared(best.bound() * GROW + slack))
+                    });
             }
             let inner = (mask & !leaves) & within(&squared, reach_sq);
             if inner != 0 {

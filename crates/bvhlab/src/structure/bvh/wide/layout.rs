@@ -21,6 +21,7 @@ use arrayvec::ArrayVec;
 
 #[cfg(feature = "parallel")]
 use super::collapse_parallel::collapse_parallel;
+use super::leaves::LeafPrims;
 #[cfg(feature = "parallel")]
 use crate::structure::bvh::build::build_sah_box_parts_parallel;
 use crate::structure::bvh::build::{TreeParts, build_sah_box_parts};
@@ -113,7 +114,9 @@ fn left_out_of<P: Primitive>(prims: &[P]) -> Vec<(u32, P)> {
 /// A 4-wide AABB tree collapsed from a built [`AabbTree`], answering
 /// [`ray_first_hit`](Self::ray_first_hit) and [`closest_point`](Self::closest_point) exactly
 /// as the binary tree (and brute force) does, bit for bit, but faster. It holds its own copy
-/// of the primitives in leaf order, so the binary tree can be dropped.
+/// of the primitives in leaf order, so the binary tree can be dropped: triangles in blocks of
+/// four that the ray walks test four at a time (`wide/triangle_block.rs`), and
+/// [`build`](Self::build) makes leaves that fill them.
 ///
 /// ```
 /// use bvhlab::glam::Vec3;
@@ -141,9 +144,11 @@ pub struct Bvh4<P: Primitive> {
     /// Wide nodes; the root is node 0 (when any primitive is indexed). Each node's inner
     /// children are contiguous.
     pub(super) nodes: Vec<Bvh4Node>,
-    /// The indexed primitives in the binary tree's leaf order.
-    pub(super) leaf_prims: Vec<P>,
-    /// `leaf_ids[i]` is the input index of `leaf_prims[i]`.
+    /// The indexed primitives in leaf order, one per slot (triangles in blocks of four,
+    /// `leaves.rs`).
+    pub(super) leaf_prims: LeafPrims<P>,
+    /// `leaf_ids[slot]` is the input index of the primitive in `slot` ([`PADDING`](super::leaves::PADDING) for a
+    /// padding slot after a leaf's last triangle).
     pub(super) leaf_ids: Vec<u32>,
     /// Wide levels from the root to the deepest node (1 for a root alone, 0 when empty):
     /// it sizes the walks' stacks.
@@ -158,10 +163,20 @@ pub struct Bvh4<P: Primitive> {
 }
 
 impl<P: Primitive> Bvh4<P> {
-    /// Builds the binned-SAH AABB tree over `prims` with the default options and collapses
-    /// it.
+    /// Builds the binned-SAH AABB tree over `prims` and collapses it: with the default
+    /// options, or over triangles with [`BvhOptions::for_triangle_blocks`], whose leaves
+    /// fill the blocks of four triangles this tree tests at once.
     pub fn build(prims: &[P]) -> Self {
-        Self::build_with(prims, &BvhOptions::default())
+        Self::build_with(prims, &Self::default_options())
+    }
+
+    /// The options [`build`](Self::build) uses for this primitive type.
+    pub fn default_options() -> BvhOptions {
+        if LeafPrims::<P>::in_blocks() {
+            BvhOptions::for_triangle_blocks()
+        } else {
+            BvhOptions::default()
+        }
     }
 
     /// Builds the AABB tree over `prims` with `options` and collapses it: the tree
@@ -179,7 +194,7 @@ impl<P: Primitive> Bvh4<P> {
     /// bit.
     #[cfg(feature = "parallel")]
     pub fn build_parallel(prims: &[P]) -> Self {
-        Self::build_with_parallel(prims, &BvhOptions::default())
+        Self::build_with_parallel(prims, &Self::default_options())
     }
 
     /// [`build_with`](Self::build_with) on every core (the `parallel` feature): the binary
@@ -200,17 +215,19 @@ impl<P: Primitive> Bvh4<P> {
         collapse: Collapse<P::Point>,
         prims: &[P],
     ) -> Self {
-        let (nodes, depth) = collapse(&parts.nodes);
+        let (mut nodes, depth) = collapse(&parts.nodes);
         // The parts index every primitive unless some were left out.
         let left_out = if parts.leaf_ids.len() == prims.len() {
             Vec::new()
         } else {
             left_out_of(prims)
         };
+        let (leaf_prims, leaf_ids) =
+            LeafPrims::lay_out(parts.leaf_prims, parts.leaf_ids, &mut nodes);
         Self {
             nodes,
-            leaf_prims: parts.leaf_prims,
-            leaf_ids: parts.leaf_ids,
+            leaf_prims,
+            leaf_ids,
             depth,
             input_len: prims.len(),
             build_sah_cost: None,
@@ -222,11 +239,13 @@ impl<P: Primitive> Bvh4<P> {
     /// Collapses a built AABB tree (its boxes, leaves and primitives are kept; only inner
     /// levels go).
     pub fn from_bvh(bvh: &Bvh<Aabb<P::Point>, P>) -> Self {
-        let (nodes, depth) = collapse(&bvh.nodes);
+        let (mut nodes, depth) = collapse(&bvh.nodes);
+        let (leaf_prims, leaf_ids) =
+            LeafPrims::lay_out(bvh.leaf_prims.clone(), bvh.leaf_ids.clone(), &mut nodes);
         Self {
             nodes,
-            leaf_prims: bvh.leaf_prims.clone(),
-            leaf_ids: bvh.leaf_ids.clone(),
+            leaf_prims,
+            leaf_ids,
             depth,
             input_len: bvh.prims.len(),
             build_sah_cost: None,
@@ -240,21 +259,24 @@ impl<P: Primitive> Bvh4<P> {
         &self.nodes
     }
 
-    /// How many primitives are indexed.
+    /// How many primitives are indexed (every one it was built over and given since, but
+    /// those left out).
     pub fn len(&self) -> usize {
-        self.leaf_ids.len()
+        self.input_len - self.left_out.len()
     }
 
     /// Whether no primitive is indexed.
     pub fn is_empty(&self) -> bool {
-        self.leaf_ids.is_empty()
+        self.len() == 0
     }
 
-    /// The heap memory it holds: nodes, primitives and their ids.
+    /// The heap memory it holds: nodes, primitives (their blocks, for triangles), their ids
+    /// and the primitives left out.
     pub fn memory_bytes(&self) -> usize {
         self.nodes.capacity() * size_of::<Bvh4Node>()
-            + self.leaf_prims.capacity() * size_of::<P>()
+            + self.leaf_prims.memory_bytes()
             + self.leaf_ids.capacity() * size_of::<u32>()
+            + self.left_out.capacity() * size_of::<(u32, P)>()
     }
 
     /// Wide levels from the root to the deepest node (0 when empty).

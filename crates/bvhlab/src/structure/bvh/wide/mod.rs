@@ -2,6 +2,10 @@
 //! answering as the binary tree does.
 //!
 //! - `layout.rs`: [`Bvh4`] and its 128-byte [`Bvh4Node`], and the collapse of a binary tree.
+//! - `leaves.rs`: the leaves' primitives in leaf order: triangles in blocks of four, any other
+//!   primitive one per slot.
+//! - `triangle_block.rs`: four triangles side by side, and the four-lane step of the
+//!   watertight test that proves which of them a ray misses.
 //! - `collapse_parallel.rs`: the same collapse on every core (the `parallel` feature).
 //! - `ray.rs`: [`Bvh4::ray_first_hit`], four slab tests at once.
 //! - `any_all_hits.rs`: [`Bvh4::ray_any_hit`] and [`Bvh4::ray_all_hits`], the walk whose
@@ -30,6 +34,7 @@ mod any_all_hits;
 mod collapse_parallel;
 mod k_nearest;
 mod layout;
+mod leaves;
 mod nearest;
 mod query_traits;
 mod range;
@@ -37,6 +42,7 @@ mod range_lanes;
 mod ray;
 mod refit;
 mod stack;
+mod triangle_block;
 mod update;
 mod validate;
 

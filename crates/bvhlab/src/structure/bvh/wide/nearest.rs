@@ -111,13 +111,12 @@ impl<P: Primitive> Bvh4<P> {
                 }
                 let start = node.child[lane] as usize;
                 let range = start..start + node.count[lane] as usize;
-                if best.test_leaf(
-                    &self.leaf_prims[range.clone()],
-                    &self.leaf_ids[range],
-                    point,
-                ) {
-                    reach_sq = reach_squared(best.distance * GROW + slack);
-                }
+                let ids = &self.leaf_ids;
+                self.leaf_prims
+                    .each_near(range, &coords, &mut reach_sq, |slot, prim| {
+                        best.test(prim, ids[slot], point)
+                            .then(|| reach_squared(best.distance * GROW + slack))
+                    });
             }
             // The inner lanes still in reach of a best the leaves may have improved.
             let inner = (mask & !leaves) & within(&squared, reach_sq);

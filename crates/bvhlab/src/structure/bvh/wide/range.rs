@@ -211,7 +211,7 @@ impl<P: Primitive> Bvh4<P> {
                     found.all(&self.leaf_ids[slots]);
                 } else {
                     for slot in slots {
-                        if shape.overlaps_primitive(&self.leaf_prims[slot]) {
+                        if shape.overlaps_primitive(&self.leaf_prims.get(slot)) {
                             found.one(self.leaf_ids[slot]);
                         }
                     }

@@ -3,9 +3,10 @@
 //! `refit.rs`).
 
 use super::layout::{Bvh4, Bvh4Node, WIDTH};
+use super::leaves::PADDING;
 use crate::Primitive;
-use crate::structure::bvh::refit::{RefitReport, bounds_of, check_same_primitives};
-use crate::structure::bvh::{BvhOptions, NodeVolume, RefitError};
+use crate::structure::bvh::RefitError;
+use crate::structure::bvh::refit::{RefitReport, check_same_primitives};
 use crate::structure::stats::sah_cost;
 use crate::volume::{Aabb, BoundingVolume};
 
@@ -22,7 +23,7 @@ impl<P: Primitive> Bvh4<P> {
     /// non-finite; the tree is then left unchanged.
     pub fn refit(&mut self, prims: &[P]) -> Result<RefitReport, RefitError> {
         let mut indexed = vec![false; self.input_len];
-        for &id in &self.leaf_ids {
+        for (_, id) in self.indexed_slots() {
             indexed[id as usize] = true;
         }
         check_same_primitives(self.input_len, |i| indexed[i], prims)?;
@@ -32,20 +33,18 @@ impl<P: Primitive> Bvh4<P> {
                 .enumerate()
                 .all(|(i, p)| indexed[i] == p.has_finite_coordinates())
         );
-        for (slot, &id) in self.leaf_prims.iter_mut().zip(&self.leaf_ids) {
-            *slot = prims[id as usize];
+        for slot in 0..self.leaf_ids.len() {
+            let id = self.leaf_ids[slot];
+            if id != PADDING {
+                self.leaf_prims.set(slot, &prims[id as usize]);
+            }
         }
-        // Only the box's own options matter to an AABB fit (none do today).
-        let options = BvhOptions::default();
         for i in (0..self.nodes.len()).rev() {
             let mut node = self.nodes[i];
             for lane in 0..WIDTH {
                 if node.count[lane] > 0 {
-                    let start = node.child[lane] as usize;
-                    let leaf = &self.leaf_prims[start..start + node.count[lane] as usize];
-                    let fitted =
-                        <Aabb<P::Point> as NodeVolume>::fit(&bounds_of(leaf), &[], &options);
-                    node.set_lane(lane, &fitted);
+                    let (start, count) = (node.child[lane], node.count[lane]);
+                    node.set_lane(lane, &self.leaf_box(start as usize, count as usize));
                 } else if node.is_used(lane) {
                     let child = &self.nodes[node.child[lane] as usize];
                     node.set_lane(lane, &node_box::<P>(child));

@@ -12,18 +12,12 @@
 //! tells when the updates have worn the tree enough that a rebuild pays.
 
 use super::layout::{Bvh4, Bvh4Node, WIDTH};
+use super::leaves::PADDING;
 use super::refit::node_box;
 use crate::Primitive;
 use crate::structure::bvh::MAX_DEPTH;
-use crate::structure::bvh::refit::bounds_of;
-use crate::structure::bvh::{BvhOptions, NodeVolume};
 use crate::structure::update::{Removed, UpdateError, check_index};
 use crate::volume::{Aabb, BoundingVolume};
-
-/// The box a leaf of `prims` gets, as the builds fit one.
-fn leaf_box<P: Primitive>(prims: &[P]) -> Aabb<P::Point> {
-    <Aabb<P::Point> as NodeVolume>::fit(&bounds_of(prims), &[], &BvhOptions::default())
-}
 
 impl<P: Primitive> Bvh4<P> {
     /// Adds a primitive and returns its index: the number of primitives the tree was built
@@ -56,10 +50,10 @@ impl<P: Primitive> Bvh4<P> {
             self.left_out.push((id as u32, prim));
             return id;
         }
-        let slot = self.leaf_prims.len() as u32;
-        self.leaf_prims.push(prim);
-        self.leaf_ids.push(id as u32);
-        let bounds = leaf_box(&[prim]);
+        let slot = self
+            .leaf_prims
+            .push_leaf(&prim, id as u32, &mut self.leaf_ids);
+        let bounds = self.leaf_box(slot as usize, 1);
         if self.nodes.is_empty() {
             let mut root = Bvh4Node::EMPTY;
             set_leaf(&mut root, 0, slot, 1, &bounds);
@@ -123,7 +117,7 @@ impl<P: Primitive> Bvh4<P> {
                     len: self.input_len,
                 },
             )?;
-            let prim = self.leaf_prims[slot];
+            let prim = self.leaf_prims.get(slot);
             self.take_out(slot as u32);
             prim
         };
@@ -151,29 +145,36 @@ impl<P: Primitive> Bvh4<P> {
 
     /// Takes leaf slot `slot` out of the lane that holds it, then lays the tree out again.
     ///
-    /// The slot moves to its lane's end, which leaves the leaf order (the slots after it
-    /// move down one, and the leaf lanes past it with them); the lane's box and those of
-    /// its ancestors are fitted again. A lane left empty is dropped; a node left with no
-    /// lane at all is pruned by laying the whole tree out again ([`Bvh4::lay_out`]).
+    /// The leaves are taken out one primitive per slot ([`Bvh4::take_leaves`]); the slot
+    /// moves to its lane's end, which leaves the leaf order (the slots after it move down
+    /// one, and the leaf lanes past it with them), and the leaves go back (triangles in
+    /// blocks again); the lane's box and those of its ancestors are fitted again. A lane
+    /// left empty is dropped; a node left with no lane at all is pruned by laying the whole
+    /// tree out again ([`Bvh4::lay_out`]).
     fn take_out(&mut self, slot: u32) {
         let Some((at, lane)) = self.leaf_lane_of(slot) else {
             return;
         };
+        let offset = slot - self.nodes[at].child[lane];
+        let (mut prims, mut ids) = self.take_leaves();
         let node = &mut self.nodes[at];
-        let end = node.child[lane] + node.count[lane] - 1;
-        self.leaf_prims.swap(slot as usize, end as usize);
-        self.leaf_ids.swap(slot as usize, end as usize);
+        let (slot, end) = (
+            node.child[lane] + offset,
+            node.child[lane] + node.count[lane] - 1,
+        );
+        prims.swap(slot as usize, end as usize);
+        ids.swap(slot as usize, end as usize);
         node.count[lane] -= 1;
         let emptied = node.count[lane] == 0;
         if emptied {
             clear_lane(node, lane);
             if !(0..WIDTH).any(|l| node.is_used(l)) {
-                self.lay_out();
+                self.lay_out(&prims, &ids);
                 return;
             }
         }
-        self.leaf_prims.remove(end as usize);
-        self.leaf_ids.remove(end as usize);
+        prims.remove(end as usize);
+        ids.remove(end as usize);
         for node in &mut self.nodes {
             for lane in 0..WIDTH {
                 if node.count[lane] > 0 && node.child[lane] > end {
@@ -181,6 +182,7 @@ impl<P: Primitive> Bvh4<P> {
                 }
             }
         }
+        self.put_leaves(prims, ids);
         if emptied {
             self.fit_ancestors(at);
         } else {
@@ -203,10 +205,9 @@ impl<P: Primitive> Bvh4<P> {
     /// Fits leaf lane `lane` of node `at` to its primitives again, then each ancestor's lane
     /// to its child node, up to the root.
     fn fit_path(&mut self, at: usize, lane: usize) {
-        let node = &mut self.nodes[at];
-        let start = node.child[lane] as usize;
-        let leaf = &self.leaf_prims[start..start + node.count[lane] as usize];
-        node.set_lane(lane, &leaf_box(leaf));
+        let (start, count) = (self.nodes[at].child[lane], self.nodes[at].count[lane]);
+        let fitted = self.leaf_box(start as usize, count as usize);
+        self.nodes[at].set_lane(lane, &fitted);
         self.fit_ancestors(at);
     }
 
@@ -227,15 +228,13 @@ impl<P: Primitive> Bvh4<P> {
         }
     }
 
-    /// Lays the tree out again from the root: empty nodes and the lanes that lead to them
+    /// Lays the tree out again from the root, over the leaves `old_prims` and `old_ids`
+    /// taken out by [`Bvh4::take_leaves`]: empty nodes and the lanes that lead to them
     /// dropped, nodes numbered in the order a walk from the root meets them (children after
     /// parents), the leaf order rewritten lane by lane (dropped slots gone), every box fitted
     /// again bottom-up, and the depth counted.
-    fn lay_out(&mut self) {
-        let (old_prims, old_ids) = (
-            std::mem::take(&mut self.leaf_prims),
-            std::mem::take(&mut self.leaf_ids),
-        );
+    fn lay_out(&mut self, old_prims: &[P], old_ids: &[u32]) {
+        let (mut prims, mut ids) = (Vec::new(), Vec::new());
         let mut nodes = Vec::with_capacity(self.nodes.len());
         let mut depth = 0;
         // (old index, new index, level); the root first, if it holds anything.
@@ -253,11 +252,9 @@ impl<P: Primitive> Bvh4<P> {
                 }
                 if node.count[lane] > 0 {
                     let (start, count) = (node.child[lane] as usize, node.count[lane] as usize);
-                    node.child[lane] = self.leaf_prims.len() as u32;
-                    self.leaf_prims
-                        .extend_from_slice(&old_prims[start..start + count]);
-                    self.leaf_ids
-                        .extend_from_slice(&old_ids[start..start + count]);
+                    node.child[lane] = prims.len() as u32;
+                    prims.extend_from_slice(&old_prims[start..start + count]);
+                    ids.extend_from_slice(&old_ids[start..start + count]);
                 } else {
                     let child = nodes.len();
                     nodes.push(Bvh4Node::EMPTY);
@@ -269,6 +266,7 @@ impl<P: Primitive> Bvh4<P> {
         }
         self.nodes = nodes;
         self.depth = depth;
+        self.put_leaves(prims, ids);
         self.fit_boxes();
     }
 
@@ -295,9 +293,8 @@ impl<P: Primitive> Bvh4<P> {
             let used: Vec<usize> = (0..WIDTH).filter(|&lane| node.is_used(lane)).collect();
             for lane in used {
                 if node.count[lane] > 0 {
-                    let start = node.child[lane] as usize;
-                    let leaf = &self.leaf_prims[start..start + node.count[lane] as usize];
-                    node.set_lane(lane, &leaf_box(leaf));
+                    let (start, count) = (node.child[lane], node.count[lane]);
+                    node.set_lane(lane, &self.leaf_box(start as usize, count as usize));
                 } else {
                     let child = &self.nodes[node.child[lane] as usize];
                     node.set_lane(lane, &node_box::<P>(child));
@@ -310,16 +307,16 @@ impl<P: Primitive> Bvh4<P> {
     /// Builds the tree again over the primitives it holds, keeping their indices.
     fn rebuild(&mut self) {
         let mut held: Vec<(u32, P)> = self
-            .leaf_ids
-            .iter()
-            .copied()
-            .zip(self.leaf_prims.iter().copied())
+            .indexed_slots()
+            .map(|(slot, id)| (id, self.leaf_prims.get(slot)))
             .collect();
         held.sort_unstable_by_key(|&(id, _)| id);
         let prims: Vec<P> = held.iter().map(|&(_, p)| p).collect();
         let mut fresh = Self::build(&prims);
         for id in &mut fresh.leaf_ids {
-            *id = held[*id as usize].0;
+            if *id != PADDING {
+                *id = held[*id as usize].0;
+            }
         }
         fresh.input_len = self.input_len;
         fresh.left_out = std::mem::take(&mut self.left_out);

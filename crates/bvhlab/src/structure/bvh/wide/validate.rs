@@ -2,7 +2,9 @@
 //! parent's (what a refit must keep; the binary tree's `validate.rs` checks the same).
 
 use super::layout::{Bvh4, WIDTH};
+use super::leaves::{LeafPrims, PADDING};
 use super::refit::node_box;
+use super::triangle_block::BLOCK;
 use crate::structure::ValidationError;
 use crate::structure::bvh::MAX_DEPTH;
 use crate::structure::check_primitive_contract;
@@ -63,7 +65,8 @@ impl<P: Primitive> Bvh4<P> {
     pub fn validate(&self) -> Result<(), ValidationError> {
         self.check_primitives()?;
         let mut reached = vec![false; self.nodes.len()];
-        let mut covered = vec![false; self.leaf_prims.len()];
+        let mut covered = vec![false; self.leaf_ids.len()];
+        let in_blocks = matches!(self.leaf_prims, LeafPrims::Blocks(_));
         let mut stack = if self.nodes.is_empty() {
             vec![]
         } else {
@@ -84,6 +87,11 @@ impl<P: Primitive> Bvh4<P> {
                 };
                 if node.count[lane] > 0 {
                     let start = node.child[lane] as usize;
+                    if in_blocks && !start.is_multiple_of(BLOCK) {
+                        return fail(format!(
+                            "wide node {i} lane {lane} starts at slot {start}, inside a block"
+                        ));
+                    }
                     for slot in start..start + node.count[lane] as usize {
                         let Some(flag) = covered.get_mut(slot) else {
                             return fail(format!(
@@ -93,7 +101,12 @@ impl<P: Primitive> Bvh4<P> {
                         if std::mem::replace(flag, true) {
                             return fail(format!("leaf slot {slot} is in two leaf lanes"));
                         }
-                        if !inside(&self.leaf_prims[slot].bounds()) {
+                        if self.leaf_ids[slot] == PADDING {
+                            return fail(format!(
+                                "wide node {i} lane {lane} holds slot {slot}, a padding slot"
+                            ));
+                        }
+                        if !inside(&self.leaf_prims.get(slot).bounds()) {
                             return fail(format!(
                                 "the box of wide node {i} lane {lane} does not contain primitive {}",
                                 self.leaf_ids[slot]
@@ -117,7 +130,8 @@ impl<P: Primitive> Bvh4<P> {
         if let Some(i) = reached.iter().position(|r| !r) {
             return fail(format!("wide node {i} is not reachable from the root"));
         }
-        if let Some(slot) = covered.iter().position(|c| !c) {
+        let mut uncovered = covered.iter().zip(&self.leaf_ids);
+        if let Some(slot) = uncovered.position(|(&c, &id)| !c && id != PADDING) {
             return fail(format!("leaf slot {slot} is in no leaf lane"));
         }
         if depth != self.depth || depth > MAX_DEPTH {
@@ -133,17 +147,23 @@ impl<P: Primitive> Bvh4<P> {
 impl<P: Primitive> Bvh4<P> {
     /// The primitives' part of [`Bvh4::validate`]: ids, finiteness and the contract.
     fn check_primitives(&self) -> Result<(), ValidationError> {
-        if self.leaf_ids.len() != self.leaf_prims.len() {
+        if self.leaf_ids.len() != self.leaf_prims.slots() {
             return fail(format!(
-                "{} leaf ids for {} leaf primitives",
+                "{} leaf ids for {} leaf slots",
                 self.leaf_ids.len(),
-                self.leaf_prims.len()
+                self.leaf_prims.slots()
             ));
         }
-        if self.leaf_ids.len() + self.left_out.len() != self.input_len {
+        if matches!(self.leaf_prims, LeafPrims::Blocks(_)) && !LeafPrims::<P>::in_blocks() {
+            return fail(
+                "the leaves hold triangle blocks, but the tree is over another primitive".into(),
+            );
+        }
+        let indexed = self.indexed_slots().count();
+        if indexed + self.left_out.len() != self.input_len {
             return fail(format!(
                 "{} primitives indexed and {} left out, but {} given",
-                self.leaf_ids.len(),
+                indexed,
                 self.left_out.len(),
                 self.input_len
             ));
@@ -157,13 +177,14 @@ impl<P: Primitive> Bvh4<P> {
         }
         // Sorted rather than flagged in a table of `input_len` entries: a loaded file's
         // `input_len` is only a number, and must not size an allocation.
-        let mut ids = self.leaf_ids.clone();
+        let mut ids: Vec<u32> = self.indexed_slots().map(|(_, id)| id).collect();
         ids.extend(self.left_out.iter().map(|&(id, _)| id));
         ids.sort_unstable();
         if let Some(&[id, _]) = ids.windows(2).find(|pair| pair[0] == pair[1]) {
             return fail(format!("primitive {id} is in more than one leaf slot"));
         }
-        for (slot, (&id, prim)) in self.leaf_ids.iter().zip(&self.leaf_prims).enumerate() {
+        for (slot, id) in self.indexed_slots() {
+            let prim = self.leaf_prims.get(slot);
             if id as usize >= self.input_len {
                 return fail(format!(
                     "leaf slot {slot} names primitive {id}, out of range"
@@ -172,7 +193,7 @@ impl<P: Primitive> Bvh4<P> {
             if !prim.has_finite_coordinates() {
                 return fail(format!("primitive {id} is non-finite but indexed"));
             }
-            check_primitive_contract(id as usize, prim)?;
+            check_primitive_contract(id as usize, &prim)?;
         }
         Ok(())
     }
