@@ -42,16 +42,19 @@
 //! differ in what they cost and what else they offer. Times are criterion medians from one
 //! run each of `cargo bench -p bvhlab --bench structures` (the bunny, 69k triangles: 20k
 //! random rays, 5k random points in its box) and `--bench point_cloud` (200k uniform points,
-//! 20k queries), on a shared 2-core machine under load: read the ratios, not the times.
+//! 20k queries), on a shared 2-core machine under load: read the ratios, not the times. The
+//! bunny's numbers were measured again on 2026-12-03, after [`Bvh4`] took its triangles in
+//! blocks of four; the point cloud's are from an earlier run (points are kept one per slot, as
+//! before).
 //!
 //! | job | structure | why |
 //! | --- | --- | --- |
-//! | many first hits, any hits or closest points on a static triangle mesh | [`Bvh4`] (`Bvh4::build`) | the fastest here: on the bunny, first hits in 0.40 and closest points in 0.43 of the binary tree's time, 0.09 and 0.08 of the k-d tree's; it also answers all hits, the k nearest and ranges ([`Bvh4::ray_all_hits`], [`Bvh4::k_nearest`], [`Bvh4::range`]), refits ([`Bvh4::refit`]), and takes inserts and removes ([`Bvh4::insert`], [`Bvh4::remove`]). It answers [`SpatialQuery`], the trait to write code for any structure against; it has no events, no collision query, and is no [`SpatialIndex`] (the lab's stepping). |
+//! | many first hits, any hits or closest points on a static triangle mesh | [`Bvh4`] (`Bvh4::build`) | the fastest here: over triangles its leaves hold blocks of four tested at once; on the bunny, first hits in 0.44 and closest points in 0.77 of the binary tree's time, 0.18 and 0.17 of the k-d tree's; it also answers all hits, the k nearest and ranges ([`Bvh4::ray_all_hits`], [`Bvh4::k_nearest`], [`Bvh4::range`]), refits ([`Bvh4::refit`]), and takes inserts and removes ([`Bvh4::insert`], [`Bvh4::remove`]). It answers [`SpatialQuery`], the trait to write code for any structure against; it has no events, no collision query, and is no [`SpatialIndex`] (the lab's stepping). |
 //! | stepping through a query, its events and [`QueryCost`]; collision between two trees; sphere or OBB node volumes; refit after motion | [`Bvh`] ([`AabbTree<P>`](AabbTree), [`SphereTree<P>`](SphereTree), [`ObbTree<P>`](ObbTree) over any primitive; `AabbTree3` is `AabbTree<Triangle3>`, `AabbTree2` is `AabbTree<Segment2>`, and so on) | every query observed ([`Observer`]), which the lab plays back; [`SpatialIndex::collide`]; three node volumes; [`Bvh::refit`](structure::bvh::Bvh::refit) and `needs_rebuild`. Its plain first hit and closest point have fast walks of their own. |
-//! | primitives of about one size spread evenly, rebuilt often | [`Grid`] | built in linear time (a counting sort into cells): builds 200k uniform points in 0.14 of [`Bvh4`]'s time and answers their closest points in 2.2 times its time; on the bunny (uneven density) its build takes 1.4 times [`Bvh4`]'s and its first hits 16 times. |
-//! | point clouds, the textbook nearest-neighbour tree | [`KdTree`] | over points [`KdTree::build`] splits at the median with leaves of at most 4 (Friedman, Bentley and Finkel 1977), 2.5 times [`Bvh4`]'s closest-point time on 200k points; over triangles it builds the SAH tree for rays (pbrt-v3), 11 times [`Bvh4`]'s first-hit time on the bunny. |
-//! | splitting by arbitrary planes (autopartition along the primitives' own planes) | [`BspTree`] | what the lecture's BSP trees teach (front-to-back order by planes); the slowest build and queries here (first hits 29 times [`Bvh4`]'s time on the bunny). |
-//! | regular, adaptive subdivision of space: cells halved on every axis | [`Orthtree`] ([`Quadtree2`], [`Octree3`]) | cells of fixed shape that adapt to density; first hits 15 times [`Bvh4`]'s time on the bunny, closest points 3.7 times on 200k points. |
+//! | primitives of about one size spread evenly, rebuilt often | [`Grid`] | built in linear time (a counting sort into cells): builds 200k uniform points in 0.14 of [`Bvh4`]'s time and answers their closest points in 2.2 times its time; on the bunny (uneven density) its build takes 0.81 of [`Bvh4`]'s time and its first hits 8.2 times. |
+//! | point clouds, the textbook nearest-neighbour tree | [`KdTree`] | over points [`KdTree::build`] splits at the median with leaves of at most 4 (Friedman, Bentley and Finkel 1977), 2.5 times [`Bvh4`]'s closest-point time on 200k points; over triangles it builds the SAH tree for rays (pbrt-v3), 5.7 times [`Bvh4`]'s first-hit time on the bunny. |
+//! | splitting by arbitrary planes (autopartition along the primitives' own planes) | [`BspTree`] | what the lecture's BSP trees teach (front-to-back order by planes); the slowest build and queries here (first hits 40 times [`Bvh4`]'s time on the bunny). |
+//! | regular, adaptive subdivision of space: cells halved on every axis | [`Orthtree`] ([`Quadtree2`], [`Octree3`]) | cells of fixed shape that adapt to density; first hits 8.0 times [`Bvh4`]'s time on the bunny, closest points 3.7 times on 200k points. |
 //!
 //! ## Start here: one job, one example
 //!
