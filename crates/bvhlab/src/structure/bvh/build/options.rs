@@ -67,7 +67,8 @@ pub struct BvhOptions {
     /// per primitive; 4 is what a [`Bvh4`](crate::structure::bvh::Bvh4) over triangles tests
     /// at once (its leaves hold them in blocks of four), so its build makes leaves whose
     /// blocks come out full ([`BvhOptions::for_triangle_blocks`]). The binned-SAH builds
-    /// read it; the stepped build the lab watches costs one per primitive. At least 1.
+    /// read it, the stepped one included; the lab builds with the default, one per primitive.
+    /// At least 1.
     pub leaf_block: usize,
 }
 
