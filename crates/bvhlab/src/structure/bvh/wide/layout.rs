@@ -41,14 +41,14 @@ type Collapse<V> = fn(&[BvhNode<Aabb<V>>]) -> (Vec<Bvh4Node>, usize);
 /// the others, in two such rounds, medians; the ratios are speed-ups over this tree built
 /// with default flags; "built for AVX2" is `-C target-feature=+avx2,+fma`):
 ///
-/// | tree | first hits (primary, shadow, diffuse, random) | overview | any hit | closest point |
+/// | tree | first hits (primary, shadow, diffuse, random) | overview | any hit | closest |
 /// | --- | --- | --- | --- | --- |
 /// | 4 wide, built for AVX2 | 0.93-1.06x | 0.97-1.06x | 1.01-1.04x | 1.01-1.02x |
-/// | 8 wide, default flags (SSE2, two four-lane halves) | 1.00-1.20x | 0.94-0.96x | 1.02-1.12x | 0.98-0.99x |
+/// | 8 wide, SSE2 (two 4-lane halves) | 1.00-1.20x | 0.94-0.96x | 1.02-1.12x | 0.98-0.99x |
 /// | 8 wide, built for AVX2 | 1.02-1.25x | 0.96-1.11x | 1.10-1.20x | 0.98-1.04x |
 ///
 /// So kernels picked at run time would gain nothing on this node, and the 8-wide node about
-/// a tenth, most of it only with AVX2. Its nodes are half empty (4.2-4.3 of 8 lanes used,
+/// a tenth with AVX2 (with SSE2 less, and unevenly: overview rays are slower). Its nodes are half empty (4.2-4.3 of 8 lanes used,
 /// against 3.1 of 4 here: leaves of up to 16 triangles stop the collapse early), 256 bytes
 /// each, 1.1-1.7 MB of nodes for these meshes against 0.8-1.4 MB here; the whole tree was
 /// 62-65 bytes per triangle. The width cannot simply be changed here: the type is named for
