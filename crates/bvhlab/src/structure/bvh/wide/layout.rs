@@ -48,11 +48,12 @@ type Collapse<V> = fn(&[BvhNode<Aabb<V>>]) -> (Vec<Bvh4Node>, usize);
 /// | 8 wide, built for AVX2 | 1.02-1.25x | 0.96-1.11x | 1.10-1.20x | 0.98-1.04x |
 ///
 /// So kernels picked at run time would gain nothing on this node, and the 8-wide node about
-/// a tenth with AVX2 (with SSE2 less, and unevenly: overview rays are slower). Its nodes are half empty (4.2-4.3 of 8 lanes used,
-/// against 3.1 of 4 here: leaves of up to 16 triangles stop the collapse early), 256 bytes
-/// each, 1.1-1.7 MB of nodes for these meshes against 0.8-1.4 MB here; the whole tree was
-/// 62-65 bytes per triangle. The width cannot simply be changed here: the type is named for
-/// four, and the saved format, the stack sizes and the mask step count on it.
+/// a tenth with AVX2 (with SSE2 less, and unevenly: overview rays are slower). Its nodes are
+/// half empty (4.2-4.3 of 8 lanes used, against 3.1 of 4 here: leaves of up to 16 triangles
+/// stop the collapse early), 256 bytes each, 1.1-1.7 MB of nodes for these meshes against
+/// 0.8-1.4 MB here; the whole tree was 62-65 bytes per triangle. The width cannot simply be
+/// changed here: the type is named for four, and the saved format, the stack sizes and the
+/// mask step count on it.
 ///
 /// Nor did smaller nodes pay: this node with its child boxes quantised to 8 bits against the
 /// node's own box (as in Ylitie, Karras and Laine, "Efficient Incoherent Ray Traversal on
@@ -176,8 +177,8 @@ pub struct Bvh4<P: Primitive> {
     /// The indexed primitives in leaf order, one per slot (triangles in blocks of four,
     /// `leaves.rs`).
     pub(super) leaf_prims: LeafPrims<P>,
-    /// `leaf_ids[slot]` is the input index of the primitive in `slot` ([`PADDING`](super::leaves::PADDING) for a
-    /// padding slot after a leaf's last triangle).
+    /// `leaf_ids[slot]` is the input index of the primitive in `slot`
+    /// ([`PADDING`](super::leaves::PADDING) for a padding slot after a leaf's last triangle).
     pub(super) leaf_ids: Vec<u32>,
     /// Wide levels from the root to the deepest node (1 for a root alone, 0 when empty):
     /// it sizes the walks' stacks.
