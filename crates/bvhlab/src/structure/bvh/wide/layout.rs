@@ -60,9 +60,9 @@ type Collapse<V> = fn(&[BvhNode<Aabb<V>>]) -> (Vec<Bvh4Node>, usize);
 /// GPUs Through Compressed Wide BVHs", 2017; one power-of-two scale per axis, rounded
 /// outward and checked against the decoding, 64 bytes, decoded with SSE2's byte unpacking)
 /// gave the same first hits on every ray of the three meshes, at 0.71-0.85x the speed (one
-/// binary, seven alternating runs): on this machine the decoding (two unpacks, a
-/// conversion, a multiply and an add per plane row) costs more than the halved node saves
-/// in loads, with 0.8-1.4 MB of full-precision nodes for these meshes. Aligning the
+/// binary, seven alternating runs): on this machine the halved node did not pay for its
+/// decoding (two unpacks, a conversion, a multiply and an add per plane row), with
+/// 0.8-1.4 MB of full-precision nodes for these meshes. Aligning the
 /// blocks to 64 bytes was 0.84-1.09x. What is left for rays is a tree generic over its
 /// width, for the eight-lane node above with kernels picked at run time.
 pub const WIDTH: usize = 4;

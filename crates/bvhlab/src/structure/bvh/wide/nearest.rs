@@ -30,12 +30,12 @@
 //! - a four-lane `f32` lower bound per block, the plane's distance with the distance outside
 //!   the farthest edge line, each lowered by a margin far above its rounding (used only on
 //!   well-shaped triangles): it spared 17-38 projections a query, and the walk was
-//!   1.00-1.04x as fast (one core, old and new binaries alternately three times, medians),
-//!   since computing it for a block costs about what the projections it spares do.
+//!   1.00-1.04x as fast (one core, old and new binaries alternately three times, medians):
+//!   the projections it spared saved about what computing it cost.
 //!
-//! Sparing most of the rest needs the exact distance of four triangles at once (corners
-//! included), or a cheaper walk: the nodes' and blocks' loads take most of the other two
-//! thirds.
+//! Sparing most of the rest would need the exact distance of four triangles at once
+//! (corners included); the walk itself, whose samples sit on the loads of nodes and blocks,
+//! takes the other two thirds.
 //!
 //! [`distance_bound_squared`]: crate::structure::bvh::NodeVolume::distance_bound_squared
 
