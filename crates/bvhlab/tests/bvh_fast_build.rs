@@ -66,6 +66,18 @@ fn option_sets() -> Vec<BvhOptions> {
             leaf_block: 2,
             ..blocks
         },
+        // Blocks larger than the leaf size: the one-go build skips the binning of nodes
+        // of at most both (they are leaves whatever the SAH says), so this is the case
+        // where only the leaf size stops the skip.
+        BvhOptions {
+            leaf_block: 8,
+            leaf_size: 3,
+            ..default
+        },
+        BvhOptions {
+            leaf_block: 16,
+            ..blocks
+        },
     ]);
     sets
 }

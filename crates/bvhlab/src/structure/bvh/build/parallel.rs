@@ -25,7 +25,7 @@
 
 use rayon::prelude::*;
 
-use super::fast::{Boxes, Item, TreeParts, build_nodes, is_forced_leaf, split_node};
+use super::fast::{Boxes, Item, TreeParts, build_nodes, is_leaf_unbinned, split_node};
 use super::fast_bins::Binner;
 use crate::Primitive;
 use crate::structure::bvh::layout::BvhNode;
@@ -175,7 +175,7 @@ fn build_piece<B: NodeVolume>(
         count: n as u32,
     };
     let leaf = || Piece::Serial(vec![node]);
-    if is_forced_leaf(n, depth, options) {
+    if is_leaf_unbinned(n, depth, options) {
         return leaf();
     }
     let mut binner = Binner::new(options);
