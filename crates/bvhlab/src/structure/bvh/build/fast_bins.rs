@@ -140,6 +140,11 @@ pub(super) struct Cheapest {
     pub best: usize,
     pub cost: f32,
     pub left: usize,
+    /// The boxes of the primitives below and above the plane: the merged boxes of its
+    /// bins, so that the partition need not merge them again (the same primitives, so the
+    /// same minimum and maximum, up to the sign of a zero, which the node's fit removes and
+    /// the areas do not see, as with the bins merged across threads).
+    pub sides: [LaneBox; 2],
 }
 
 /// What a node's binning is planned on: its area, and the `k` axes along which its centres
@@ -259,6 +264,9 @@ impl Binner {
                 best = Some(curve);
             }
         }
+        if let Some(best) = &mut best {
+            best.sides = self.sides(best.bins.axis, best.best);
+        }
         self.clear();
         best.filter(|b| b.cost.is_finite())
     }
@@ -333,6 +341,7 @@ impl Binner {
                 best: 0,
                 cost: f32::INFINITY,
                 left: 0,
+                sides: [LaneBox::EMPTY; 2],
             };
             if i != j {
                 let (low, high) = if i < j { (0, 1) } else { (1, 0) };
@@ -342,6 +351,7 @@ impl Binner {
                 curve.cost = (1.0 + (area_low * one + area_high * one) / node_area) as f32;
                 curve.best = i.min(j);
                 curve.left = 1;
+                curve.sides = [items[low].bounds, items[high].bounds];
             }
             if best.is_none_or(|b| curve.cost < b.cost) {
                 best = Some(curve);
@@ -402,6 +412,7 @@ impl Binner {
             best: 0,
             cost: f32::INFINITY,
             left: 0,
+            sides: [LaneBox::EMPTY; 2],
         };
         let (mut acc, mut n) = (LaneBox::EMPTY, 0usize);
         for (j, &i) in occupied.iter().enumerate().take(m.saturating_sub(1)) {
@@ -426,6 +437,19 @@ impl Binner {
     #[inline]
     fn units(&self, n: usize) -> f64 {
         n.div_ceil(self.leaf_block) as f64
+    }
+
+    /// The merged boxes of the occupied bins of `axis` up to `best` and after it.
+    fn sides(&self, axis: usize, best: usize) -> [LaneBox; 2] {
+        let mut sides = [LaneBox::EMPTY; 2];
+        let mut mask = self.occupied[axis];
+        while mask != 0 {
+            let i = mask.trailing_zeros() as usize;
+            let side = &mut sides[usize::from(i > best)];
+            *side = side.merge(&self.boxes[axis][i]);
+            mask &= mask - 1;
+        }
+        sides
     }
 
     /// Empties the bins the node used.
