@@ -8,12 +8,13 @@
 //! order), the areas from the same `f32` side lengths summed in `f64` in the same order, the
 //! same sweeps over the occupied bins and the same strict comparisons, axis by axis.
 //!
-//! Where a build spends its time (issue 33, `perf` of `Bvh4::build` on the three meshes):
-//! 40% of the samples in the build's own loop, into which the binning is inlined (most of
-//! them on the binning's loads and merges), 23% in the partition, 17% in the sweeps. Tried on the
-//! binning and the sweep and not kept. Each was timed against the build without it: old
-//! and new binaries in turn, three runs of 15 builds each, on one core, on the bunny, the
-//! dragon and the ogre. Unless said otherwise, each gave the same trees.
+//! Where a build spends its time (issue 33, `perf` of `Bvh4::build` on the three meshes,
+//! before the sides' boxes came from the bins): 40% of the samples in the build's own loop,
+//! into which the binning is inlined (most of them on the binning's loads and merges), 23%
+//! in the partition, 17% in the sweeps. Tried on the binning and the sweep and not kept.
+//! Each was timed against the build without it: old and new binaries in turn, three runs
+//! of 15 builds each, on one core, on the bunny, the dragon and the ogre. Unless said
+//! otherwise, each gave the same trees.
 //!
 //! | tried | build time, new ÷ old (below 1 is faster) |
 //! |---|---|
