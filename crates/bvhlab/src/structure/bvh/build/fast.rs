@@ -62,6 +62,13 @@ impl Item {
         }
     }
 
+    /// Its centre in four lanes, as [`LaneBox`] holds points (the fourth lane 0).
+    #[inline]
+    fn centroid_lanes(&self) -> glam::Vec4 {
+        let [x, y, z] = self.centroid;
+        glam::Vec4::new(x, y, z, 0.0)
+    }
+
     fn to_build_prim<V: Vector>(self) -> BuildPrim<V> {
         let bounds = self.bounds.to_aabb();
         let mut centroid = V::ZERO;
@@ -108,8 +115,7 @@ impl Boxes {
     #[inline]
     fn add(&mut self, item: &Item) {
         self.bounds = self.bounds.merge(&item.bounds);
-        let [x, y, z] = item.centroid;
-        self.centroids = self.centroids.grown(glam::Vec4::new(x, y, z, 0.0));
+        self.centroids = self.centroids.grown(item.centroid_lanes());
     }
 
     /// Adds `item`'s centre when `take`, without a branch: otherwise it merges the empty
@@ -117,8 +123,7 @@ impl Boxes {
     #[inline]
     fn add_centroid_if(&mut self, item: &Item, take: bool) {
         let mask = glam::BVec4A::splat(take);
-        let [x, y, z] = item.centroid;
-        let c = glam::Vec4::new(x, y, z, 0.0);
+        let c = item.centroid_lanes();
         let e = LaneBox::EMPTY;
         self.centroids.min = self.centroids.min.min(glam::Vec4::select(mask, c, e.min));
         self.centroids.max = self.centroids.max.max(glam::Vec4::select(mask, c, e.max));
